@@ -1,0 +1,21 @@
+//! delmesh — tetrahedral and triangular mesh generation with exact predicates,
+//! used from C, C++ and Fortran through a stable C ABI (`ffi`, header `include/delmesh.h`).
+//!
+//! Layers, bottom up (see the design notes in the README):
+//! - [`predicates`]: exact orientation, in-sphere and power tests with a deterministic
+//!   symbolic perturbation;
+//! - [`triangulation`]: 3D Delaunay and regular triangulations in flat index arrays;
+//! - [`mesh`]: the result type handed to users;
+//! - `ffi`: the C ABI, a panic boundary around every exported function.
+
+pub mod error;
+pub mod ffi;
+pub mod mesh;
+pub mod predicates;
+pub mod triangulation;
+
+pub use error::{Error, ErrorKind, Result};
+pub use mesh::Mesh;
+
+/// Version of the C ABI; bumped on every breaking change of `include/delmesh.h`.
+pub const ABI_VERSION: u32 = 1;
