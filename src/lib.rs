@@ -10,6 +10,7 @@
 
 pub mod error;
 pub mod ffi;
+pub mod io;
 pub mod mesh;
 pub mod predicates;
 pub mod triangulation;
