@@ -22,7 +22,11 @@ const VERSION: &CStr =
 /// process. Thread-safe.
 #[no_mangle]
 pub extern "C" fn delmesh_version_string() -> *const c_char {
-    value("delmesh_version_string", <&CStr>::default().as_ptr(), || VERSION.as_ptr())
+    value(
+        "delmesh_version_string",
+        <&CStr>::default().as_ptr(),
+        || VERSION.as_ptr(),
+    )
 }
 
 /// The ABI version of the loaded library; equals `DELMESH_ABI_VERSION` of the header it
