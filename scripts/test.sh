@@ -4,8 +4,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-bash scripts/setup.sh
-
 passed=0
 failed=0
 failures=()
@@ -33,6 +31,7 @@ c_tests() {
     make -C c_tests "$1"
 }
 
+stage "setup" bash scripts/setup.sh
 stage "cargo fmt" cargo fmt --check
 stage "cargo clippy" cargo clippy --all-targets -- -D warnings
 stage "cargo build" cargo build --release
