@@ -47,65 +47,49 @@ pub fn write(mesh: &Mesh, out: &mut impl Write) -> io::Result<()> {
 fn blocks(mesh: &Mesh) -> Vec<Block<'_>> {
     let mut blocks = Vec::new();
     if !mesh.edges.is_empty() {
-        let edges = mesh.edges.chunks_exact(2).collect();
-        blocks.push(block(1, 1, 1, "edges".into(), LINE, edges));
+        blocks.push(Block {
+            dim: 1,
+            tag: 1,
+            physical: 1,
+            name: "edges".into(),
+            element_type: LINE,
+            elements: mesh.edges.chunks_exact(2).collect(),
+        });
     }
     let patches = Patches::new(&mesh.facet_labels);
     for (patch, facets) in grouped(&mesh.facets, 3, &patches.of_facet) {
         let [from, to] = patches.pairs[patch - 1];
-        let tag = patch as i32;
-        blocks.push(block(
-            2,
-            tag,
-            tag,
-            format!("facets {from} {to}"),
-            TRIANGLE,
-            facets,
-        ));
+        blocks.push(Block {
+            dim: 2,
+            tag: patch as i32,
+            physical: patch as i32,
+            name: format!("facets {from} {to}"),
+            element_type: TRIANGLE,
+            elements: facets,
+        });
     }
-    for (k, (label, triangles)) in grouped(&mesh.triangles, 3, &mesh.triangle_labels)
-        .into_iter()
-        .enumerate()
-    {
-        let tag = (patches.pairs.len() + k) as i32 + 1;
-        blocks.push(block(
-            2,
-            tag,
-            label,
-            format!("region {label}"),
-            TRIANGLE,
-            triangles,
-        ));
+    let regions = grouped(&mesh.triangles, 3, &mesh.triangle_labels);
+    for (k, (label, triangles)) in regions.into_iter().enumerate() {
+        blocks.push(Block {
+            dim: 2,
+            tag: (patches.pairs.len() + k + 1) as i32,
+            physical: label,
+            name: format!("region {label}"),
+            element_type: TRIANGLE,
+            elements: triangles,
+        });
     }
     for (label, tetrahedra) in grouped(&mesh.tetrahedra, 4, &mesh.tetrahedron_labels) {
-        blocks.push(block(
-            3,
-            label,
-            label,
-            format!("subdomain {label}"),
-            TETRAHEDRON,
-            tetrahedra,
-        ));
+        blocks.push(Block {
+            dim: 3,
+            tag: label,
+            physical: label,
+            name: format!("subdomain {label}"),
+            element_type: TETRAHEDRON,
+            elements: tetrahedra,
+        });
     }
     blocks
-}
-
-fn block(
-    dim: u8,
-    tag: i32,
-    physical: i32,
-    name: String,
-    element_type: u8,
-    elements: Vec<&[u32]>,
-) -> Block<'_> {
-    Block {
-        dim,
-        tag,
-        physical,
-        name,
-        element_type,
-        elements,
-    }
 }
 
 /// The elements (`per` vertices each) grouped by key, keys increasing, elements in order.
