@@ -73,19 +73,25 @@ impl Mesh {
             return Err("tetrahedron arrays have inconsistent lengths".into());
         }
         if self.facets.len() * 2 != self.facet_labels.len() * 3
-            || self.edges.len() % 2 != 0
+            || !self.edges.len().is_multiple_of(2)
             || self.triangles.len() != 3 * self.triangle_labels.len()
         {
             return Err("facet, edge or triangle arrays have inconsistent lengths".into());
         }
         let all = [&self.tetrahedra, &self.facets, &self.edges, &self.triangles];
-        if let Some(&bad) = all.iter().flat_map(|a| a.iter()).find(|&&v| v as usize >= n) {
+        if let Some(&bad) = all
+            .iter()
+            .flat_map(|a| a.iter())
+            .find(|&&v| v as usize >= n)
+        {
             return Err(format!("vertex index {bad} out of range (n = {n})"));
         }
         for (t, tet) in self.tetrahedra.chunks_exact(4).enumerate() {
             let p = [0, 1, 2, 3].map(|k| self.vertex(tet[k]));
             if orient3d(&p[0], &p[1], &p[2], &p[3]) != Sign::Positive {
-                return Err(format!("tetrahedron {t} {tet:?} is not positively oriented"));
+                return Err(format!(
+                    "tetrahedron {t} {tet:?} is not positively oriented"
+                ));
             }
         }
         if !self.duplicate_of.is_empty() && self.duplicate_of.len() != n {

@@ -1,17 +1,316 @@
-//! 3D Delaunay and regular triangulations (DESIGN.md layer 2).
+//! 3D Delaunay and regular (weighted Delaunay) triangulations (DESIGN.md layer 2).
+//!
+//! Bowyer–Watson insertion: locate the point by a visibility walk from the last created
+//! tetrahedron, grow its conflict cavity by breadth-first search, and fill the cavity with the
+//! cone from the new point over the cavity boundary. The convex hull is closed by tetrahedra
+//! incident to an [`INFINITE`](tets::INFINITE) vertex, so every point, inside or outside the
+//! current hull, is inserted the same way.
+//!
+//! Every decision is an exact predicate with symbolic perturbation (`predicates::*_sos`), so
+//! the triangulation of a point set is unique — also for cospherical or coplanar inputs — and
+//! does not depend on the insertion order: it is the regular triangulation of the points with
+//! infinitesimally perturbed weights.
+//!
+//! Invariants: see [`tets`]; in addition every inserted, non-hidden vertex is a vertex of some
+//! live tetrahedron, and no tetrahedron is in conflict with the vertex opposite any of its
+//! facets (local Delaunay/regularity, equivalent to the global property). `validate` checks
+//! them all exactly.
 
-use crate::error::{Error, Result};
-use crate::mesh::Mesh;
+mod insert;
+mod sort;
+pub mod tets;
+mod validate;
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::mesh::{Mesh, DIMENSION_UNKNOWN};
+use crate::predicates::{orient2d, orient3d, Point, Sign};
+use tets::{Tets, INFINITE};
 
 /// Delaunay tetrahedralization of `xyz` (3 coordinates per point). Output vertex `i` is
 /// input point `i`; duplicates are merged onto their first occurrence (`Mesh::duplicate_of`).
 pub fn delaunay_tetrahedralize(xyz: &[f64]) -> Result<Mesh> {
-    let _ = xyz;
-    Err(Error::internal("not yet available"))
+    let mut t = Triangulation::new(xyz, None)?;
+    t.insert_all()?;
+    Ok(t.into_mesh())
 }
 
-/// Regular (weighted Delaunay) tetrahedralization; hidden points are referenced by no tetrahedron.
+/// Regular (weighted Delaunay) tetrahedralization: the power of `x` with respect to point `p`
+/// of weight `w` is `|x - p|^2 - w`. Hidden (redundant) points are referenced by no
+/// tetrahedron; an input point identical to an earlier one in position and weight is merged.
 pub fn regular_tetrahedralize(xyz: &[f64], weights: &[f64]) -> Result<Mesh> {
-    let _ = (xyz, weights);
-    Err(Error::internal("not yet available"))
+    let mut t = Triangulation::new(xyz, Some(weights))?;
+    t.insert_all()?;
+    Ok(t.into_mesh())
+}
+
+/// Largest number of input points: tetrahedron facets are addressed as `4*t+i` in 32 bits,
+/// and a triangulation has fewer than 7 tetrahedra per point in practice.
+pub const MAX_POINTS: usize = 1 << 27;
+
+/// Largest accepted coordinate magnitude: the in-sphere determinant has degree 5, and its
+/// terms must stay below the largest double.
+pub const MAX_COORDINATE: f64 = 1e60;
+
+/// What happened to an input point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PointState {
+    /// Not yet inserted.
+    Pending,
+    /// A vertex of the triangulation (it may since have been hidden by a heavier point).
+    Inserted,
+    /// Same position (and weight) as the given earlier vertex; merged onto it.
+    Duplicate(u32),
+    /// A weighted point whose power cell is empty at insertion.
+    Hidden,
+}
+
+/// A 3D Delaunay or regular triangulation of borrowed points.
+///
+/// Vertices are numbered internally in insertion order (`order[v]` is the input index of
+/// vertex `v`), so that the coordinates of nearby vertices are close in memory; the public
+/// interface speaks of input indices only.
+pub struct Triangulation<'a> {
+    input: &'a [[f64; 3]],
+    order: Vec<u32>,
+    /// Coordinates and weights in insertion order; `weights` is empty for Delaunay.
+    points: Vec<[f64; 3]>,
+    weights: Vec<f64>,
+    tets: Tets,
+    /// What became of each vertex, in insertion order.
+    state: Vec<PointState>,
+    /// Where the next walk starts.
+    hint: u32,
+    /// Walk randomization (xorshift32), deterministic.
+    rng: u32,
+    scratch: insert::Scratch,
+}
+
+impl<'a> Triangulation<'a> {
+    /// Checks the input and prepares an empty triangulation; `weights` selects a regular one.
+    pub fn new(xyz: &'a [f64], weights: Option<&'a [f64]>) -> Result<Self> {
+        let (points, rest) = xyz.as_chunks::<3>();
+        if !rest.is_empty() {
+            return Err(Error::invalid_input(format!(
+                "{} coordinates is not a multiple of 3",
+                xyz.len()
+            )));
+        }
+        validate_points(points, weights)?;
+        let order = sort::brio_order(points);
+        let sorted = order.iter().map(|&i| points[i as usize]).collect();
+        let weights = match weights {
+            Some(w) => order.iter().map(|&i| w[i as usize]).collect(),
+            None => Vec::new(),
+        };
+        Ok(Triangulation {
+            input: points,
+            order,
+            points: sorted,
+            weights,
+            tets: Tets::with_capacity(7 * points.len() + 16)?,
+            state: vec![PointState::Pending; points.len()],
+            hint: 0,
+            rng: 0x9e37_79b9,
+            scratch: insert::Scratch::default(),
+        })
+    }
+
+    /// Whether this is a regular (weighted) triangulation.
+    #[inline]
+    pub fn is_regular(&self) -> bool {
+        !self.weights.is_empty()
+    }
+
+    #[inline]
+    fn point(&self, v: u32) -> &Point {
+        &self.points[v as usize]
+    }
+
+    /// Input index of vertex `v`.
+    #[inline]
+    fn input_index(&self, v: u32) -> u32 {
+        self.order[v as usize]
+    }
+
+    /// What became of each input point, by input index.
+    pub fn states(&self) -> Vec<PointState> {
+        let mut by_input = vec![PointState::Pending; self.state.len()];
+        for (v, &s) in self.state.iter().enumerate() {
+            by_input[self.order[v] as usize] = s;
+        }
+        by_input
+    }
+
+    /// Finite live tetrahedra, as quadruples of input indices (positively oriented).
+    pub fn finite_tetrahedra(&self) -> impl Iterator<Item = [u32; 4]> + '_ {
+        self.tets
+            .live()
+            .map(|t| self.tets.vertices(t))
+            .filter(|v| !v.contains(&INFINITE))
+            .map(|v| v.map(|x| self.input_index(x)))
+    }
+
+    /// Inserts every point in BRIO/Hilbert order.
+    pub fn insert_all(&mut self) -> Result<()> {
+        let first = self.initial_tetrahedron()?;
+        for p in 0..self.points.len() as u32 {
+            if !first.contains(&p) {
+                self.insert(p)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Finds four affinely independent points (the first ones in insertion order) and builds
+    /// the first tetrahedron with its four infinite neighbours.
+    fn initial_tetrahedron(&mut self) -> Result<[u32; 4]> {
+        let n = self.points.len();
+        let p = |i: u32| self.point(i);
+        let mut all = 0..n as u32;
+        let a = 0;
+        let b = all.clone().find(|&i| p(i) != p(a));
+        let b = b.ok_or_else(|| too_few(n, "all points coincide"))?;
+        let c = all.clone().find(|&i| !collinear(p(a), p(b), p(i)));
+        let c = c.ok_or_else(|| too_few(n, "all points are collinear"))?;
+        let d = all.find(|&i| orient3d(p(a), p(b), p(c), p(i)) != Sign::Zero);
+        let d = d.ok_or_else(|| too_few(n, "all points are coplanar"))?;
+        let (a, b) = if orient3d(p(a), p(b), p(c), p(d)) == Sign::Positive {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        self.build_first_tetrahedron([a, b, c, d]);
+        Ok([a, b, c, d])
+    }
+
+    fn build_first_tetrahedron(&mut self, v: [u32; 4]) {
+        let t0 = self.tets.allocate();
+        self.tets.set(t0, v);
+        for i in 0..4 {
+            let [f0, f1, f2] = tets::FACE[i].map(|k| v[k]);
+            // Reversed facet + infinite vertex: positive with the outer side substituted.
+            let ti = self.tets.allocate();
+            self.tets.set(ti, [f1, f0, f2, INFINITE]);
+            self.tets.glue(4 * t0 + i as u32, 4 * ti + 3);
+        }
+        // The four infinite tetrahedra meet pairwise along the hull edges.
+        for a in 1..5u32 {
+            for b in a + 1..5u32 {
+                let (fa, fb) = self.shared_facet(a, b);
+                self.tets.glue(4 * a + fa, 4 * b + fb);
+            }
+        }
+        for i in v {
+            self.state[i as usize] = PointState::Inserted;
+        }
+        self.hint = t0;
+    }
+
+    /// Local facet indices by which tetrahedra `a` and `b` (sharing three vertices) touch.
+    fn shared_facet(&self, a: u32, b: u32) -> (u32, u32) {
+        let (va, vb) = (self.tets.vertices(a), self.tets.vertices(b));
+        let fa = va.iter().position(|x| !vb.contains(x)).unwrap_or(0) as u32;
+        let fb = vb.iter().position(|x| !va.contains(x)).unwrap_or(0) as u32;
+        (fa, fb)
+    }
+
+    /// The result mesh: input points in input order, finite tetrahedra, label 1.
+    pub fn into_mesh(self) -> Mesh {
+        let n = self.input.len();
+        let rep = self.representatives();
+        let mut tetrahedra = self.tets.into_finite();
+        for v in &mut tetrahedra {
+            *v = rep[self.order[*v as usize] as usize];
+        }
+        Mesh {
+            vertices: self.input.as_flattened().to_vec(),
+            vertex_dimensions: vec![DIMENSION_UNKNOWN; n],
+            tetrahedron_labels: vec![1; tetrahedra.len() / 4],
+            tetrahedra,
+            duplicate_of: rep,
+            ..Mesh::default()
+        }
+    }
+
+    /// For every input point, the input point that stands for its position: the smallest
+    /// index among a group of merged duplicates, itself otherwise.
+    fn representatives(&self) -> Vec<u32> {
+        let mut rep: Vec<u32> = (0..self.input.len() as u32).collect();
+        let duplicates = || {
+            self.state.iter().enumerate().filter_map(|(v, s)| match *s {
+                PointState::Duplicate(w) => Some((self.order[v], w)),
+                _ => None,
+            })
+        };
+        for (i, w) in duplicates() {
+            rep[w as usize] = rep[w as usize].min(i);
+        }
+        for (i, w) in duplicates() {
+            rep[i as usize] = rep[w as usize];
+        }
+        rep
+    }
+}
+
+fn too_few(n: usize, what: &str) -> Error {
+    Error::invalid_input(format!(
+        "{what} ({n} points): a tetrahedralization needs 4 affinely independent points"
+    ))
+}
+
+/// Exact collinearity: the cross product vanishes iff its three projections do.
+fn collinear(a: &Point, b: &Point, c: &Point) -> bool {
+    [(0, 1), (1, 2), (0, 2)]
+        .iter()
+        .all(|&(i, j)| orient2d(&[a[i], a[j]], &[b[i], b[j]], &[c[i], c[j]]) == Sign::Zero)
+}
+
+fn validate_points(points: &[[f64; 3]], weights: Option<&[f64]>) -> Result<()> {
+    if points.len() < 4 {
+        return Err(Error::invalid_input(format!(
+            "{} points given: a tetrahedralization needs at least 4",
+            points.len()
+        )));
+    }
+    if points.len() > MAX_POINTS {
+        return Err(Error::new(
+            ErrorKind::Limit,
+            format!(
+                "{} points given: at most {MAX_POINTS} are supported",
+                points.len()
+            ),
+        ));
+    }
+    if let Some(i) = points.iter().position(|p| p.iter().any(|c| !c.is_finite())) {
+        return Err(Error::invalid_input(format!(
+            "point {i} has a non-finite coordinate {:?}",
+            points[i]
+        )));
+    }
+    if let Some(i) = points
+        .iter()
+        .position(|p| p.iter().any(|c| c.abs() > MAX_COORDINATE))
+    {
+        return Err(Error::invalid_input(format!(
+            "point {i} {:?} has a coordinate beyond {MAX_COORDINATE:e}, where the exact in-sphere \
+             test would overflow",
+            points[i]
+        )));
+    }
+    if let Some(w) = weights {
+        if w.len() != points.len() {
+            return Err(Error::invalid_input(format!(
+                "{} weights for {} points",
+                w.len(),
+                points.len()
+            )));
+        }
+        if let Some(i) = w.iter().position(|x| !x.is_finite()) {
+            return Err(Error::invalid_input(format!(
+                "point {i} has a non-finite weight {}",
+                w[i]
+            )));
+        }
+    }
+    Ok(())
 }
