@@ -4,6 +4,9 @@
 //! coordinates, evaluated exactly. Constructions elsewhere are floating point.
 //!
 //! Sign conventions (all positive cases are "the expected, non-degenerate" side):
+//! - [`orient2d`]`(a,b,c)` is positive when `a, b, c` turn counter-clockwise.
+//! - [`incircle`]`(a,b,c,d)`, for counter-clockwise `a, b, c`: positive when `d` lies strictly
+//!   inside their circumcircle.
 //! - [`orient3d`]`(a,b,c,d)` is the sign of `dot(b-a, cross(c-a, d-a))`: positive when
 //!   `(a,b,c,d)` is a positively oriented tetrahedron (the C API's convention). This is the
 //!   opposite of Shewchuk's `orient3d`.
@@ -12,14 +15,42 @@
 //! - [`power_test`]: the weighted version: positive when the lifted point
 //!   `(e, |e|^2 - w_e)` lies strictly below the hyperplane through the lifted `a..d`, i.e.
 //!   `e` is in conflict with the tetrahedron in the regular triangulation.
+//! - [`incircle_coplanar`] and [`power_test_coplanar`]: the same tests for four coplanar points,
+//!   in the plane of the triangle `a, b, c`, whatever its orientation.
 //!
-//! The `_sos` variants never return [`Sign::Zero`] for a non-degenerate simplex: exact ties
-//! are broken by a symbolic perturbation of the lifted coordinate, `|p|^2 - w_p - eps^(r_p)`
-//! ordered by the lexicographic rank `r_p` of the point's coordinates, so the outcome depends
-//! on the points only, never on the order in which they are given or inserted.
+//! In terms of determinants, with the lifted coordinate `l(p) = |p|^2 - w_p` (`w_p = 0` for
+//! unweighted points) and rows listed in argument order:
+//! `orient3d = det[1 p]`, `insphere = power_test = -det[1 p l(p)]`, `orient2d = det[1 p]`,
+//! `incircle = -det[1 p l(p)]` (the last two in the plane).
+//!
+//! Every predicate first runs a semi-static floating-point filter (`filter.rs`); only the calls
+//! it cannot certify go to the exact stage (`exact.rs`). Neither allocates unless the exact stage
+//! falls back to big integers (coordinates outside the range of Shewchuk's expansions, or the
+//! weighted and coplanar predicates).
+//!
+//! The `_sos` variants never return [`Sign::Zero`] for a non-degenerate simplex: exact ties are
+//! broken by a symbolic perturbation of the lifted coordinate, `l(p) + eps^(n - r_p)` for the
+//! `n` points of the test, where `r_p` in `0..n` is the rank of `p` in the lexicographic order
+//! of the coordinates ([`lex_cmp`], weights play no part), so the lexicographically largest
+//! point is lifted the most. The outcome depends on the points only, never on the order in
+//! which they are given or inserted; it is the perturbation of CGAL's
+//! `Delaunay_triangulation_3::side_of_oriented_sphere`, `coplanar_side_of_bounded_circle` and
+//! `Regular_triangulation_3::side_of_power_sphere` with `perturb = true` (derivation in `perturb.rs`).
+
+mod exact;
+mod filter;
+mod perturb;
+mod plane;
+
+use std::cmp::Ordering;
+
+use plane::Projection;
 
 /// A point of R^3.
 pub type Point = [f64; 3];
+
+/// A weighted point: `x, y, z, weight`. Its lifted coordinate is `|p|^2 - weight`.
+pub type WeightedPoint = [f64; 4];
 
 /// The sign of an exactly evaluated determinant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -51,20 +82,159 @@ impl Sign {
     }
 }
 
-fn c3(p: &Point) -> robust::Coord3D<f64> {
-    robust::Coord3D {
-        x: p[0],
-        y: p[1],
-        z: p[2],
+/// The sign of a product is the product of the signs.
+impl std::ops::Mul for Sign {
+    type Output = Sign;
+
+    fn mul(self, other: Sign) -> Sign {
+        match other {
+            Sign::Positive => self,
+            Sign::Zero => Sign::Zero,
+            Sign::Negative => self.negate(),
+        }
     }
 }
 
+/// Lexicographic order of points: by `x`, then `y`, then `z`. The order of the symbolic
+/// perturbation. Inputs are finite; `-0.0` and `0.0` compare equal.
+pub fn lex_cmp(a: &Point, b: &Point) -> Ordering {
+    let axis = |k: usize| a[k].partial_cmp(&b[k]).unwrap_or(Ordering::Equal);
+    axis(0).then_with(|| axis(1)).then_with(|| axis(2))
+}
+
+/// Sign of `cross(b-a, c-a)`: positive when `a, b, c` turn counter-clockwise.
+pub fn orient2d(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Sign {
+    filter::orient2d(a, b, c).unwrap_or_else(|| exact::orient2d(a, b, c))
+}
+
+/// For counter-clockwise `a, b, c`: positive when `d` is strictly inside their circumcircle
+/// (the sign flips for clockwise `a, b, c`).
+pub fn incircle(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Sign {
+    filter::incircle(a, b, c, d).unwrap_or_else(|| exact::incircle(a, b, c, d))
+}
+
 /// Sign of `dot(b-a, cross(c-a, d-a))`; positive for a positively oriented tetrahedron.
+#[inline]
 pub fn orient3d(a: &Point, b: &Point, c: &Point, d: &Point) -> Sign {
-    Sign::of(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)))
+    match filter::orient3d(a, b, c, d) {
+        Some(sign) => sign,
+        None => exact::orient3d(a, b, c, d),
+    }
 }
 
 /// For positively oriented `(a,b,c,d)`: positive when `e` is strictly inside their circumsphere.
+#[inline]
 pub fn insphere(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
-    Sign::of(-robust::insphere(c3(a), c3(b), c3(c), c3(d), c3(e)))
+    match filter::insphere(a, b, c, d, e) {
+        Some(sign) => sign,
+        None => exact::insphere(a, b, c, d, e),
+    }
+}
+
+/// [`insphere`] with ties broken by the symbolic perturbation: never `Zero`.
+///
+/// Precondition: `(a,b,c,d)` is positively oriented and the five points are distinct.
+pub fn insphere_sos(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
+    match insphere(a, b, c, d, e) {
+        Sign::Zero => perturb::insphere(a, b, c, d, e),
+        sign => sign,
+    }
+}
+
+/// For positively oriented `(a,b,c,d)`: positive when the lifted `e` lies strictly below the
+/// hyperplane through the lifted `a..d` (`e` is in conflict). With zero weights it is
+/// [`insphere`].
+pub fn power_test(
+    a: &WeightedPoint,
+    b: &WeightedPoint,
+    c: &WeightedPoint,
+    d: &WeightedPoint,
+    e: &WeightedPoint,
+) -> Sign {
+    filter::power_test(a, b, c, d, e).unwrap_or_else(|| exact::power_test(a, b, c, d, e))
+}
+
+/// [`power_test`] with ties broken by the symbolic perturbation (by coordinates only): never
+/// `Zero`.
+///
+/// Precondition: `(a,b,c,d)` is positively oriented and the five points have distinct
+/// coordinates.
+pub fn power_test_sos(
+    a: &WeightedPoint,
+    b: &WeightedPoint,
+    c: &WeightedPoint,
+    d: &WeightedPoint,
+    e: &WeightedPoint,
+) -> Sign {
+    match power_test(a, b, c, d, e) {
+        Sign::Zero => perturb::power_test(a, b, c, d, e),
+        sign => sign,
+    }
+}
+
+/// For `p` coplanar with the non-collinear `a, b, c` (`orient3d(a,b,c,p) == Zero`): positive
+/// when `p` is strictly inside the circumcircle of `a, b, c`, whatever their orientation.
+/// `Zero` when `a, b, c` are collinear. It is [`power_test_coplanar`] with zero weights.
+pub fn incircle_coplanar(a: &Point, b: &Point, c: &Point, p: &Point) -> Sign {
+    power_test_coplanar(
+        &unweighted(a),
+        &unweighted(b),
+        &unweighted(c),
+        &unweighted(p),
+    )
+}
+
+/// [`incircle_coplanar`] with ties broken by the symbolic perturbation: never `Zero` when
+/// `a, b, c` are not collinear (and the four points are distinct).
+pub fn incircle_coplanar_sos(a: &Point, b: &Point, c: &Point, p: &Point) -> Sign {
+    power_test_coplanar_sos(
+        &unweighted(a),
+        &unweighted(b),
+        &unweighted(c),
+        &unweighted(p),
+    )
+}
+
+/// The power test in the plane of the non-collinear `a, b, c`, for a coplanar `p`: positive
+/// when the lifted `p` lies strictly below the plane through the lifted `a, b, c` (`p` is in
+/// conflict with the triangle), whatever the orientation of `a, b, c`. `Zero` when `a, b, c`
+/// are collinear. With zero weights it is [`incircle_coplanar`].
+pub fn power_test_coplanar(
+    a: &WeightedPoint,
+    b: &WeightedPoint,
+    c: &WeightedPoint,
+    p: &WeightedPoint,
+) -> Sign {
+    match Projection::of(&xyz(a), &xyz(b), &xyz(c)) {
+        Some(plane) => plane.power_test(a, b, c, p),
+        None => Sign::Zero,
+    }
+}
+
+/// [`power_test_coplanar`] with ties broken by the symbolic perturbation (by coordinates only):
+/// never `Zero` when `a, b, c` are not collinear (and the four points have distinct
+/// coordinates).
+pub fn power_test_coplanar_sos(
+    a: &WeightedPoint,
+    b: &WeightedPoint,
+    c: &WeightedPoint,
+    p: &WeightedPoint,
+) -> Sign {
+    let Some(plane) = Projection::of(&xyz(a), &xyz(b), &xyz(c)) else {
+        return Sign::Zero;
+    };
+    match plane.power_test(a, b, c, p) {
+        Sign::Zero => perturb::power_test_coplanar(&plane, a, b, c, p),
+        sign => sign,
+    }
+}
+
+/// The point of a weighted point.
+fn xyz(p: &WeightedPoint) -> Point {
+    [p[0], p[1], p[2]]
+}
+
+/// A point with zero weight.
+fn unweighted(p: &Point) -> WeightedPoint {
+    [p[0], p[1], p[2], 0.0]
 }

@@ -1,0 +1,249 @@
+//! The exact stage: called only when a filter cannot certify a sign.
+//!
+//! The unweighted predicates use Shewchuk's adaptive expansions (the `robust` crate) whenever
+//! those are exact for the given coordinates, and big integers otherwise. The weighted and
+//! coplanar predicates always use big integers.
+//!
+//! Shewchuk's expansion arithmetic is exact as long as no operation underflows or overflows. For
+//! a predicate of degree `k` (2 for orient2d, 3 for orient3d, 4 for incircle, 5 for insphere),
+//! every value the expansions hold is a sum of products of at most `k` input coordinates and of
+//! their differences and split halves. If every nonzero coordinate has an exponent in
+//! `[52 - 1022/k, 950/k]` (binary exponents, `|x| = 1.m * 2^e`), every coordinate is an integer
+//! multiple of `2^-(1022/k)`, so every nonzero value is a multiple of `2^-1022`, hence a normal
+//! number, and never underflows. Differences are below `2^(950/k + 2)`, every value (a sum of
+//! at most `2^8` products of `k` of them) below `2^(950 + 2k + 8) <= 2^968`, and below `2^996`
+//! after multiplication by the splitter `2^27 + 1`: none overflows.
+//!
+//! The big-integer path scales every coordinate by a common power of two, `x = X 2^q`, and every
+//! weight by the square of that power, `w = W 2^(2q)`, making all of them integers. The predicates are
+//! homogeneous (a determinant of degree `k` is multiplied by `2^(kq) > 0`), so the sign of the
+//! same determinant over the integers `X, W` is the answer. The determinants are those the
+//! filters evaluate (`filter.rs`), on the same translated rows, expanded along the last column.
+
+use num_bigint::{BigInt, Sign as BigSign};
+use num_traits::{Float, Zero};
+
+use super::{Point, Sign, WeightedPoint};
+
+/// Degree of orient2d in the coordinates.
+const ORIENT2D_DEGREE: i32 = 2;
+/// Degree of orient3d in the coordinates.
+const ORIENT3D_DEGREE: i32 = 3;
+/// Degree of incircle in the coordinates.
+const INCIRCLE_DEGREE: i32 = 4;
+/// Degree of insphere in the coordinates.
+const INSPHERE_DEGREE: i32 = 5;
+
+/// Exact [`super::orient2d`].
+#[cold]
+#[inline(never)]
+pub(super) fn orient2d(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Sign {
+    if shewchuk_exact(&[a, b, c], ORIENT2D_DEGREE) {
+        return Sign::of(robust::orient2d(c2(a), c2(b), c2(c)));
+    }
+    let [a, b, c] = integers::<2, 3>([a, b, c], None);
+    let rows = [sub(&b, &a), sub(&c, &a)];
+    sign(&det2(&rows))
+}
+
+/// Exact [`super::incircle`].
+#[cold]
+#[inline(never)]
+pub(super) fn incircle(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Sign {
+    if shewchuk_exact(&[a, b, c, d], INCIRCLE_DEGREE) {
+        return Sign::of(robust::incircle(c2(a), c2(b), c2(c), c2(d)));
+    }
+    let [a, b, c, d] = integers::<2, 4>([a, b, c, d], None);
+    let rows = [&a, &b, &c].map(|p| {
+        let r = sub(p, &d);
+        let lift = square_norm(&r);
+        [r[0].clone(), r[1].clone(), lift]
+    });
+    sign(&det3(&rows))
+}
+
+/// Exact [`super::orient3d`].
+#[cold]
+#[inline(never)]
+pub(super) fn orient3d(a: &Point, b: &Point, c: &Point, d: &Point) -> Sign {
+    if shewchuk_exact(&[a, b, c, d], ORIENT3D_DEGREE) {
+        // Shewchuk's orient3d is the opposite of ours.
+        return Sign::of(-robust::orient3d(c3(a), c3(b), c3(c), c3(d)));
+    }
+    let [a, b, c, d] = integers::<3, 4>([a, b, c, d], None);
+    sign(&det3(&[sub(&b, &a), sub(&c, &a), sub(&d, &a)]))
+}
+
+/// Exact [`super::insphere`].
+#[cold]
+#[inline(never)]
+pub(super) fn insphere(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
+    if shewchuk_exact(&[a, b, c, d, e], INSPHERE_DEGREE) {
+        // Shewchuk's insphere is positive inside for his positive orientation, the opposite
+        // of ours.
+        return Sign::of(-robust::insphere(c3(a), c3(b), c3(c), c3(d), c3(e)));
+    }
+    let weightless = |p: &Point| [p[0], p[1], p[2], 0.0];
+    power_test(
+        &weightless(a),
+        &weightless(b),
+        &weightless(c),
+        &weightless(d),
+        &weightless(e),
+    )
+}
+
+/// Exact [`super::power_test`]: minus the determinant with rows `(x, y, z, l)` of `a..d`
+/// translated to `e`, `l = |p - e|^2 - (w_p - w_e)`.
+#[cold]
+#[inline(never)]
+pub(super) fn power_test(
+    a: &WeightedPoint,
+    b: &WeightedPoint,
+    c: &WeightedPoint,
+    d: &WeightedPoint,
+    e: &WeightedPoint,
+) -> Sign {
+    let [a, b, c, d, e] = integers::<4, 5>([a, b, c, d, e], Some(3));
+    let rows = [&a, &b, &c, &d].map(|p| {
+        let r = sub(p, &e);
+        let lift = square_norm(&r[..3]) - &r[3];
+        [r[0].clone(), r[1].clone(), r[2].clone(), lift]
+    });
+    sign(&det4(&rows)).negate()
+}
+
+/// Exact coplanar power test determinant (see `filter::power_coplanar`): rows `(u, v, l)` of
+/// `a - p, b - p, c - p`, `l` the full 3D lifted coordinate.
+#[cold]
+#[inline(never)]
+pub(super) fn power_coplanar(
+    a: &WeightedPoint,
+    b: &WeightedPoint,
+    c: &WeightedPoint,
+    p: &WeightedPoint,
+    [u, v, _]: [usize; 3],
+) -> Sign {
+    let [a, b, c, p] = integers::<4, 4>([a, b, c, p], Some(3));
+    let rows = [&a, &b, &c].map(|q| {
+        let r = sub(q, &p);
+        let lift = square_norm(&r[..3]) - &r[3];
+        [r[u].clone(), r[v].clone(), lift]
+    });
+    sign(&det3(&rows))
+}
+
+/// Whether Shewchuk's expansions evaluate a predicate of degree `degree` exactly on these
+/// coordinates (see the module documentation).
+fn shewchuk_exact<const D: usize>(points: &[&[f64; D]], degree: i32) -> bool {
+    let range = 52 - 1022 / degree..=950 / degree;
+    points
+        .iter()
+        .flat_map(|p| p.iter())
+        .all(|&x| x == 0.0 || range.contains(&binary_exponent(x)))
+}
+
+/// The exponent `e` of a normal `x = 1.m * 2^e`; below `-1022` for subnormal numbers.
+fn binary_exponent(x: f64) -> i32 {
+    ((x.to_bits() >> 52) & 0x7ff) as i32 - 1023
+}
+
+fn c2(p: &[f64; 2]) -> robust::Coord<f64> {
+    robust::Coord { x: p[0], y: p[1] }
+}
+
+fn c3(p: &Point) -> robust::Coord3D<f64> {
+    robust::Coord3D {
+        x: p[0],
+        y: p[1],
+        z: p[2],
+    }
+}
+
+/// The integers `X = x 2^-q` for the coordinates and `W = w 2^-2q` for the component
+/// `weight` (if any) of `N` points of dimension `D`, for the largest `q` making all of them
+/// integers.
+fn integers<const D: usize, const N: usize>(
+    points: [&[f64; D]; N],
+    weight: Option<usize>,
+) -> [[BigInt; D]; N] {
+    let is_weight = |k: usize| weight == Some(k);
+    let parts = points.map(|p| p.map(dyadic));
+    let q = parts
+        .iter()
+        .flat_map(|p| p.iter().enumerate())
+        .filter_map(|(k, part)| {
+            let (_, exponent) = (*part)?;
+            Some(if is_weight(k) {
+                exponent.div_euclid(2)
+            } else {
+                exponent
+            })
+        })
+        .min()
+        .unwrap_or(0);
+    parts.map(|p| {
+        std::array::from_fn(|k| match p[k] {
+            None => BigInt::zero(),
+            Some((mantissa, exponent)) => {
+                let scale = if is_weight(k) { 2 * q } else { q };
+                let shift = usize::try_from(exponent - scale)
+                    .expect("the common exponent is the smallest one");
+                BigInt::from(mantissa) << shift
+            }
+        })
+    })
+}
+
+/// `x = m 2^e` for integers `m, e`; `None` for zero.
+fn dyadic(x: f64) -> Option<(i64, i32)> {
+    let (mantissa, exponent, sign) = Float::integer_decode(x);
+    let mantissa = i64::try_from(mantissa).expect("53-bit mantissa");
+    (mantissa != 0).then(|| (i64::from(sign) * mantissa, i32::from(exponent)))
+}
+
+fn sign(x: &BigInt) -> Sign {
+    match x.sign() {
+        BigSign::Minus => Sign::Negative,
+        BigSign::NoSign => Sign::Zero,
+        BigSign::Plus => Sign::Positive,
+    }
+}
+
+fn sub<const D: usize>(p: &[BigInt; D], q: &[BigInt; D]) -> [BigInt; D] {
+    std::array::from_fn(|k| &p[k] - &q[k])
+}
+
+fn square_norm(r: &[BigInt]) -> BigInt {
+    r.iter().map(|x| x * x).sum()
+}
+
+/// `r0[0] r1[1] - r1[0] r0[1]`.
+fn minor(r0: &[BigInt], r1: &[BigInt]) -> BigInt {
+    &r0[0] * &r1[1] - &r1[0] * &r0[1]
+}
+
+fn det2(rows: &[[BigInt; 2]; 2]) -> BigInt {
+    minor(&rows[0], &rows[1])
+}
+
+/// Expanded along the last column.
+fn det3(rows: &[[BigInt; 3]; 3]) -> BigInt {
+    let [a, b, c] = rows;
+    &a[2] * minor(b, c) - &b[2] * minor(a, c) + &c[2] * minor(a, b)
+}
+
+/// Expanded along the last column.
+fn det4(rows: &[[BigInt; 4]; 4]) -> BigInt {
+    (0..4).fold(BigInt::zero(), |det, i| {
+        let others: [usize; 3] = std::array::from_fn(|k| if k < i { k } else { k + 1 });
+        let minor = others.map(|j| [0, 1, 2].map(|k| rows[j][k].clone()));
+        let term = &rows[i][3] * det3(&minor);
+        // Cofactor sign of entry (i, 3): (-1)^(i+3).
+        if i % 2 == 1 {
+            det + term
+        } else {
+            det - term
+        }
+    })
+}
