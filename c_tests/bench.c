@@ -239,18 +239,18 @@ int main(int argc, char **argv) {
       }
     }
 
-  printf("\n%9s %-5s | %12s %12s %12s | %9s %9s | %8s %8s %8s | %9s %9s | %s\n", "points", "dist",
-         "delmesh pt/s", "CGAL pt/s", "TetGen pt/s", "CGAL/us", "TetGen/us", "ours MB", "CGAL MB",
-         "TetGen MB", "CGAL/us", "TetGen/us", "tetrahedra ours / CGAL / TetGen");
-  printf("%9s %-5s | %12s %12s %12s | %19s | %26s | %19s |\n", "", "", "", "", "", "time ratio (>1 faster)",
-         "", "memory ratio (>1 smaller)");
+  printf("\n%9s %-5s | %-38s | %-23s | %-26s | %-23s |\n", "", "", "points per second (median)",
+         "time ratio (>1: faster)", "peak memory, MB (median)", "mem. ratio (>1: smaller)");
+  printf("%9s %-5s | %12s %12s %12s | %11s %11s | %8s %8s %8s | %11s %11s | %s\n", "points", "dist",
+         "delmesh", "CGAL", "TetGen", "CGAL/ours", "TetGen/ours", "delmesh", "CGAL", "TetGen",
+         "CGAL/ours", "TetGen/ours", "tetrahedra: delmesh / CGAL / TetGen");
   for (size_t i = 0; i < row_count; i++) {
     const Row *r = &rows[i];
     if (!r->ok) {
       printf("%9zu %-5s | failed\n", r->n, distribution_names[r->distribution]);
       continue;
     }
-    printf("%9zu %-5s | %12.0f %12.0f %12.0f | %9.2f %9.2f | %8.1f %8.1f %8.1f | %9.2f %9.2f | %zu / %zu / %zu\n",
+    printf("%9zu %-5s | %12.0f %12.0f %12.0f | %11.2f %11.2f | %8.1f %8.1f %8.1f | %11.2f %11.2f | %zu / %zu / %zu\n",
            r->n, distribution_names[r->distribution], (double)r->n / r->seconds[DELMESH],
            (double)r->n / r->seconds[CGAL], (double)r->n / r->seconds[TETGEN],
            r->seconds[CGAL] / r->seconds[DELMESH], r->seconds[TETGEN] / r->seconds[DELMESH],
