@@ -190,3 +190,26 @@ fn bad_inputs_are_reported() {
     let e = regular_tetrahedralize(&random_points(5, 3), &w).unwrap_err();
     assert!(e.message.contains("point 1"));
 }
+
+#[test]
+fn copies_of_hidden_points_are_duplicates() {
+    // Unit-cube corners of weight 1 hide interior points of weight 0; each interior point is
+    // given twice, so some copy is always inserted after its original is hidden.
+    let mut xyz = Vec::new();
+    for c in 0..8 {
+        xyz.extend([(c & 1) as f64, ((c >> 1) & 1) as f64, ((c >> 2) & 1) as f64]);
+    }
+    let interior = [[0.3, 0.5, 0.5], [0.4, 0.5, 0.5], [0.6, 0.45, 0.5]];
+    for _ in 0..2 {
+        for p in interior {
+            xyz.extend(p);
+        }
+    }
+    let mut w = vec![1.0; 8];
+    w.extend([0.0; 6]);
+    check(&xyz, Some(&w));
+    let mesh = regular_tetrahedralize(&xyz, &w).unwrap();
+    assert_eq!(&mesh.duplicate_of[11..], &[8, 9, 10]);
+    assert_eq!(mesh.duplicate_count(), 3);
+    assert!((8..14).all(|v| !mesh.tetrahedra.contains(&v)));
+}

@@ -36,7 +36,9 @@ pub fn delaunay_tetrahedralize(xyz: &[f64]) -> Result<Mesh> {
 
 /// Regular (weighted Delaunay) tetrahedralization: the power of `x` with respect to point `p`
 /// of weight `w` is `|x - p|^2 - w`. Hidden (redundant) points are referenced by no
-/// tetrahedron; an input point identical to an earlier one in position and weight is merged.
+/// tetrahedron. An input point identical to an earlier one in position and weight is merged
+/// onto it (`Mesh::duplicate_of`); points at one position with different weights are not
+/// copies: the heaviest is kept and the others are hidden, as in the power diagram.
 pub fn regular_tetrahedralize(xyz: &[f64], weights: &[f64]) -> Result<Mesh> {
     let mut t = Triangulation::new(xyz, Some(weights))?;
     t.insert_all()?;
@@ -58,7 +60,7 @@ pub enum PointState {
     Pending,
     /// A vertex of the triangulation (it may since have been hidden by a heavier point).
     Inserted,
-    /// Same position (and weight) as the given earlier vertex; merged onto it.
+    /// Same position (and weight) as the given input point; merged onto it.
     Duplicate(u32),
     /// A weighted point whose power cell is empty at insertion.
     Hidden,
@@ -152,22 +154,50 @@ impl<'a> Triangulation<'a> {
 
     /// Inserts every point in BRIO/Hilbert order.
     pub fn insert_all(&mut self) -> Result<()> {
+        if self.is_regular() {
+            self.mark_exact_copies();
+        }
         let first = self.initial_tetrahedron()?;
         for p in 0..self.points.len() as u32 {
-            if !first.contains(&p) {
+            if !first.contains(&p) && self.state[p as usize] == PointState::Pending {
                 self.insert(p)?;
             }
         }
         Ok(())
     }
 
-    /// Finds four affinely independent points (the first ones in insertion order) and builds
-    /// the first tetrahedron with its four infinite neighbours.
+    /// Regular triangulations: marks every exact copy (same position and weight) of an earlier
+    /// input point as its duplicate before anything is inserted, so that copies of points that
+    /// end up hidden are reported too. (Delaunay insertion finds copies on its own: there, every
+    /// point that is not a copy becomes a vertex.)
+    fn mark_exact_copies(&mut self) {
+        let value = |v: u32| {
+            let [x, y, z] = self.points[v as usize];
+            [x, y, z, self.weights[v as usize]]
+        };
+        let mut by_value: Vec<u32> = (0..self.points.len() as u32).collect();
+        by_value.sort_unstable_by(|&u, &v| {
+            let order = value(u)
+                .partial_cmp(&value(v))
+                .unwrap_or(std::cmp::Ordering::Equal);
+            order.then(self.order[u as usize].cmp(&self.order[v as usize]))
+        });
+        for run in by_value.chunk_by(|&u, &v| value(u) == value(v)) {
+            let first = self.input_index(run[0]);
+            for &v in &run[1..] {
+                self.state[v as usize] = PointState::Duplicate(first);
+            }
+        }
+    }
+
+    /// Finds four affinely independent points (the first ones in insertion order that are not
+    /// copies) and builds the first tetrahedron with its four infinite neighbours.
     fn initial_tetrahedron(&mut self) -> Result<[u32; 4]> {
         let n = self.points.len();
         let p = |i: u32| self.point(i);
-        let mut all = 0..n as u32;
-        let a = 0;
+        let pending = |i: &u32| self.state[*i as usize] == PointState::Pending;
+        let mut all = (0..n as u32).filter(pending);
+        let a = all.next().unwrap_or(0);
         let b = all.clone().find(|&i| p(i) != p(a));
         let b = b.ok_or_else(|| too_few(n, "all points coincide"))?;
         let c = all.clone().find(|&i| !collinear(p(a), p(b), p(i)));
