@@ -128,8 +128,9 @@ uint32_t delmesh_abi_version(void);
  On success `*out` receives a new mesh owned by the caller (free it with
  `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xyz` or `out`
  -> `DELMESH_ERROR_NULL_ARGUMENT`; `n` so large that 3 * n doubles cannot be addressed ->
- `DELMESH_ERROR_INVALID_ARGUMENT`; a non-finite coordinate or fewer than 4 affinely
- independent points -> `DELMESH_ERROR_INVALID_INPUT`.
+ `DELMESH_ERROR_INVALID_ARGUMENT`; a non-finite coordinate, a coordinate of magnitude
+ above 1e60, or fewer than 4 affinely independent points ->
+ `DELMESH_ERROR_INVALID_INPUT`.
 
  Thread-safe: calls on different threads run independently; `xyz` is only read.
 
@@ -152,7 +153,7 @@ enum DelmeshStatus delmesh_delaunay_tetrahedralize(const double *xyz,
 const char *delmesh_last_error_message(void);
 
 /*
- Number of input points merged onto an earlier point with the same coordinates; 0 for
+ Number of input points merged onto an earlier exact copy (see `delmesh_mesh_duplicate_of`); 0 for
  a NULL handle or a result not made from input points.
 
  # Safety
@@ -161,8 +162,9 @@ const char *delmesh_last_error_message(void);
 size_t delmesh_mesh_duplicate_count(const struct DelmeshMesh *m);
 
 /*
- For results made from input points: entry `i` is the first input point with the same
- coordinates as point `i` (`i` itself when unique), vertex_count entries. A merged
+ For results made from input points: entry `i` is the first input point of which point
+ `i` is an exact copy (same coordinates; for weighted points, same weight too), `i`
+ itself when it is no copy; vertex_count entries. A merged
  point keeps its vertex slot but no simplex refers to it. NULL for a NULL handle or
  other results. Owned by the mesh, valid until `delmesh_mesh_free`.
 
@@ -332,14 +334,19 @@ enum DelmeshStatus delmesh_mesh_write(const struct DelmeshMesh *m, const char *p
  interleaved) with weights `weights` (n doubles, squared radii): every finite
  tetrahedron, label 1.
 
- Output vertex `i` is input point `i`. Hidden (redundant) points and points equal to an
- earlier one keep their slot and are referenced by no tetrahedron. Deterministic.
+ Output vertex `i` is input point `i`. Hidden (redundant) points and exact copies of an
+ earlier point (same coordinates and same weight) keep their slot and are referenced by
+ no tetrahedron; copies are reported by `delmesh_mesh_duplicate_of`. Points at one
+ position with different weights are not copies: the heaviest is kept and the others are
+ hidden, as in the power diagram (CGAL's `Regular_triangulation_3` does the same).
+ Deterministic.
 
  On success `*out` receives a new mesh owned by the caller (free it with
  `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xyz`,
  `weights` or `out` -> `DELMESH_ERROR_NULL_ARGUMENT`; `n` too large to address ->
- `DELMESH_ERROR_INVALID_ARGUMENT`; a non-finite coordinate or weight, or fewer than 4
- affinely independent points -> `DELMESH_ERROR_INVALID_INPUT`.
+ `DELMESH_ERROR_INVALID_ARGUMENT`; a non-finite coordinate or weight, a coordinate of
+ magnitude above 1e60, or fewer than 4 affinely independent points ->
+ `DELMESH_ERROR_INVALID_INPUT`.
 
  Thread-safe: calls on different threads run independently; the inputs are only read.
 

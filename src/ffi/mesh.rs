@@ -211,7 +211,7 @@ pub unsafe extern "C" fn delmesh_mesh_triangle_labels(m: *const DelmeshMesh) -> 
     }
 }
 
-/// Number of input points merged onto an earlier point with the same coordinates; 0 for
+/// Number of input points merged onto an earlier exact copy (see `delmesh_mesh_duplicate_of`); 0 for
 /// a NULL handle or a result not made from input points.
 ///
 /// # Safety
@@ -221,8 +221,9 @@ pub unsafe extern "C" fn delmesh_mesh_duplicate_count(m: *const DelmeshMesh) -> 
     unsafe { count("delmesh_mesh_duplicate_count", m, Mesh::duplicate_count) }
 }
 
-/// For results made from input points: entry `i` is the first input point with the same
-/// coordinates as point `i` (`i` itself when unique), vertex_count entries. A merged
+/// For results made from input points: entry `i` is the first input point of which point
+/// `i` is an exact copy (same coordinates; for weighted points, same weight too), `i`
+/// itself when it is no copy; vertex_count entries. A merged
 /// point keeps its vertex slot but no simplex refers to it. NULL for a NULL handle or
 /// other results. Owned by the mesh, valid until `delmesh_mesh_free`.
 ///

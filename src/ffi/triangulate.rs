@@ -14,8 +14,9 @@ use crate::triangulation;
 /// On success `*out` receives a new mesh owned by the caller (free it with
 /// `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xyz` or `out`
 /// -> `DELMESH_ERROR_NULL_ARGUMENT`; `n` so large that 3 * n doubles cannot be addressed ->
-/// `DELMESH_ERROR_INVALID_ARGUMENT`; a non-finite coordinate or fewer than 4 affinely
-/// independent points -> `DELMESH_ERROR_INVALID_INPUT`.
+/// `DELMESH_ERROR_INVALID_ARGUMENT`; a non-finite coordinate, a coordinate of magnitude
+/// above 1e60, or fewer than 4 affinely independent points ->
+/// `DELMESH_ERROR_INVALID_INPUT`.
 ///
 /// Thread-safe: calls on different threads run independently; `xyz` is only read.
 ///
@@ -39,14 +40,19 @@ pub unsafe extern "C" fn delmesh_delaunay_tetrahedralize(
 /// interleaved) with weights `weights` (n doubles, squared radii): every finite
 /// tetrahedron, label 1.
 ///
-/// Output vertex `i` is input point `i`. Hidden (redundant) points and points equal to an
-/// earlier one keep their slot and are referenced by no tetrahedron. Deterministic.
+/// Output vertex `i` is input point `i`. Hidden (redundant) points and exact copies of an
+/// earlier point (same coordinates and same weight) keep their slot and are referenced by
+/// no tetrahedron; copies are reported by `delmesh_mesh_duplicate_of`. Points at one
+/// position with different weights are not copies: the heaviest is kept and the others are
+/// hidden, as in the power diagram (CGAL's `Regular_triangulation_3` does the same).
+/// Deterministic.
 ///
 /// On success `*out` receives a new mesh owned by the caller (free it with
 /// `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xyz`,
 /// `weights` or `out` -> `DELMESH_ERROR_NULL_ARGUMENT`; `n` too large to address ->
-/// `DELMESH_ERROR_INVALID_ARGUMENT`; a non-finite coordinate or weight, or fewer than 4
-/// affinely independent points -> `DELMESH_ERROR_INVALID_INPUT`.
+/// `DELMESH_ERROR_INVALID_ARGUMENT`; a non-finite coordinate or weight, a coordinate of
+/// magnitude above 1e60, or fewer than 4 affinely independent points ->
+/// `DELMESH_ERROR_INVALID_INPUT`.
 ///
 /// Thread-safe: calls on different threads run independently; the inputs are only read.
 ///
