@@ -15,8 +15,8 @@ use std::cmp::Ordering;
 
 use delmesh::predicates::{
     incircle, incircle_coplanar, incircle_coplanar_sos, insphere, insphere_sos, lex_cmp, orient2d,
-    orient3d, power_test, power_test_coplanar, power_test_coplanar_sos, power_test_sos, Point,
-    Sign, WeightedPoint,
+    orient3d, power_test, power_test_coplanar, power_test_coplanar_sos, power_test_sos, BoxFilter,
+    Point, Sign, WeightedPoint,
 };
 use num_bigint::BigInt;
 use num_rational::BigRational;
@@ -821,4 +821,61 @@ fn lex_cmp_orders_by_x_then_y_then_z() {
         lex_cmp(&[-0.0, 0.0, 1.0], &[0.0, -0.0, 1.0]),
         Ordering::Equal
     );
+}
+
+/// The box filter decides exactly as the full predicates for points of its box: random
+/// points, exactly degenerate lattice points, and lattice points nudged by a few ulps.
+#[test]
+fn box_filter_agrees_with_the_full_predicates() {
+    let mut rng = Pcg64::seed_from_u64(0xb0c5);
+    let boxes = [([0.0; 3], [1.0; 3]), ([-1e3, 5.0, 2e-3], [1e3, 6.0, 3e-3])];
+    for (lo, hi) in boxes {
+        let filter = BoxFilter::new(&lo, &hi);
+        let mut point = |rng: &mut Pcg64, lattice: bool| -> Point {
+            std::array::from_fn(|k| {
+                let t = if lattice {
+                    // The box's corners: all cospherical.
+                    f64::from(rng.gen_range(0..2u8))
+                } else {
+                    rng.gen_range(0.0..1.0)
+                };
+                let x = lo[k] + t * (hi[k] - lo[k]);
+                let x = if lattice && rng.gen_bool(0.02) {
+                    nudge(x, rng.gen_range(-2..=2))
+                } else {
+                    x
+                };
+                x.clamp(lo[k], hi[k])
+            })
+        };
+        let (mut decided, mut degenerate) = (0, 0);
+        for round in 0..40_000 {
+            let lattice = round % 2 == 1;
+            let mut p: [Point; 5] = std::array::from_fn(|_| point(&mut rng, lattice));
+            assert_eq!(
+                filter.orient3d(&p[0], &p[1], &p[2], &p[3]),
+                orient3d(&p[0], &p[1], &p[2], &p[3])
+            );
+            match orient3d(&p[0], &p[1], &p[2], &p[3]) {
+                Sign::Zero => continue,
+                Sign::Negative => p.swap(0, 1),
+                Sign::Positive => {}
+            }
+            if (0..4).any(|i| p[i] == p[4]) {
+                continue;
+            }
+            let exact = insphere(&p[0], &p[1], &p[2], &p[3], &p[4]);
+            degenerate += usize::from(exact == Sign::Zero);
+            decided += 1;
+            assert_eq!(
+                filter.insphere_sos(&p[0], &p[1], &p[2], &p[3], &p[4]),
+                insphere_sos(&p[0], &p[1], &p[2], &p[3], &p[4]),
+                "{p:?}"
+            );
+        }
+        assert!(
+            decided > 10_000 && degenerate > 100,
+            "{decided} {degenerate}"
+        );
+    }
 }

@@ -278,3 +278,63 @@ pub(super) fn power_coplanar(
     let unit = m[0] * m[1] * (3.0 * (largest * largest) + mw);
     POWER_COPLANAR.certify(lifted_det3(&rows, &lifts), unit, smallest, largest)
 }
+
+/// Filter bounds fixed once for every point of a box.
+///
+/// A filter's bound `C * unit` grows with the per-axis maxima of the translated coordinates,
+/// and no computed difference of two coordinates in the box exceeds the box's computed extent
+/// (rounding is monotone). The bound taken at the extents therefore holds for every call on
+/// points of the box: the same determinant, evaluated in the same order as [`orient3d`] and
+/// [`insphere`], is certified by one comparison, without computing the maxima. The range
+/// conditions are checked on the extents once; outside them the bounds are infinite and never
+/// decide.
+#[derive(Clone, Copy, Debug)]
+pub struct BoxBounds {
+    orient3d: f64,
+    insphere: f64,
+}
+
+impl BoxBounds {
+    pub fn new(lo: &Point, hi: &Point) -> Self {
+        let m: [f64; 3] = std::array::from_fn(|k| hi[k] - lo[k]);
+        let (smallest, largest) = extremes(&m);
+        let bound = |b: &Bound, unit: f64| {
+            if b.lower <= smallest && largest <= b.upper {
+                b.coefficient * unit
+            } else {
+                f64::INFINITY
+            }
+        };
+        BoxBounds {
+            orient3d: bound(&ORIENT3D, m[0] * m[1] * m[2]),
+            insphere: bound(&INSPHERE, m[0] * m[1] * m[2] * largest * largest),
+        }
+    }
+
+    /// [`orient3d`] with the box's bound.
+    #[inline]
+    pub fn orient3d(&self, a: &Point, b: &Point, c: &Point, d: &Point) -> Option<Sign> {
+        let [r, s, t] = [diff::<3>(b, a), diff::<3>(c, a), diff::<3>(d, a)];
+        let det = (r[2] * minor(&s, &t) - s[2] * minor(&r, &t)) + t[2] * minor(&r, &s);
+        certify(det, self.orient3d)
+    }
+
+    /// [`insphere`] with the box's bound.
+    #[inline]
+    pub fn insphere(&self, a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Option<Sign> {
+        let rows = [a, b, c, d].map(|p| diff::<3>(p, e));
+        let lifts = rows.map(|r| square_norm(&r));
+        certify(-lifted_det4(&rows, &lifts), self.insphere)
+    }
+}
+
+#[inline]
+fn certify(det: f64, eps: f64) -> Option<Sign> {
+    if det > eps {
+        Some(Sign::Positive)
+    } else if det < -eps {
+        Some(Sign::Negative)
+    } else {
+        None
+    }
+}

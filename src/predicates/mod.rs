@@ -131,6 +131,36 @@ pub fn insphere(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
     }
 }
 
+/// The hot predicates of a triangulation whose points all lie in one box: a first filter
+/// whose bound is fixed by the box (no per-call maxima), then the full predicate.
+#[derive(Clone, Copy, Debug)]
+pub struct BoxFilter(filter::BoxBounds);
+
+impl BoxFilter {
+    /// For points with `lo <= p <= hi` coordinate-wise.
+    pub fn new(lo: &Point, hi: &Point) -> Self {
+        BoxFilter(filter::BoxBounds::new(lo, hi))
+    }
+
+    /// [`orient3d`] of points of the box.
+    #[inline]
+    pub fn orient3d(&self, a: &Point, b: &Point, c: &Point, d: &Point) -> Sign {
+        match self.0.orient3d(a, b, c, d) {
+            Some(sign) => sign,
+            None => orient3d(a, b, c, d),
+        }
+    }
+
+    /// [`insphere_sos`] of points of the box.
+    #[inline]
+    pub fn insphere_sos(&self, a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
+        match self.0.insphere(a, b, c, d, e) {
+            Some(sign) => sign,
+            None => insphere_sos(a, b, c, d, e),
+        }
+    }
+}
+
 /// [`insphere`] with ties broken by the symbolic perturbation: never `Zero`.
 ///
 /// Precondition: `(a,b,c,d)` is positively oriented and the five points are distinct.

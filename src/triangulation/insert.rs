@@ -12,8 +12,7 @@ use super::tets::{FACE, INFINITE};
 use super::{PointState, Triangulation};
 use crate::error::{Error, Result};
 use crate::predicates::{
-    incircle_coplanar_sos, insphere_sos, orient3d, power_test_coplanar_sos, power_test_sos, Point,
-    Sign, WeightedPoint,
+    incircle_coplanar_sos, power_test_coplanar_sos, power_test_sos, Point, Sign, WeightedPoint,
 };
 
 /// Conflict marks of the insertion under way; every mark is cleared before the next one.
@@ -193,7 +192,7 @@ impl Triangulation<'_> {
     pub(super) fn orient_with(&self, t: u32, i: usize, q: &Point) -> Sign {
         let v = self.tets.vertices(t);
         let pt = |k: usize| if k == i { q } else { self.point(v[k]) };
-        orient3d(pt(0), pt(1), pt(2), pt(3))
+        self.filter.orient3d(pt(0), pt(1), pt(2), pt(3))
     }
 
     /// Whether `p` is in conflict with tetrahedron `t` (perturbed, never a tie).
@@ -208,7 +207,7 @@ impl Triangulation<'_> {
                     power_test_sos(&w[0], &w[1], &w[2], &w[3], &self.weighted(p)) == Sign::Positive
                 } else {
                     let [a, b, c, d] = v.map(|x| self.point(x));
-                    insphere_sos(a, b, c, d, q) == Sign::Positive
+                    self.filter.insphere_sos(a, b, c, d, q) == Sign::Positive
                 }
             }
             Some(k) => match self.orient_with(t, k, q) {

@@ -23,7 +23,7 @@ mod validate;
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::mesh::{Mesh, DIMENSION_UNKNOWN};
-use crate::predicates::{orient2d, orient3d, Point, Sign};
+use crate::predicates::{orient2d, orient3d, BoxFilter, Point, Sign};
 use tets::{Tets, INFINITE};
 
 /// Delaunay tetrahedralization of `xyz` (3 coordinates per point). Output vertex `i` is
@@ -78,6 +78,8 @@ pub struct Triangulation<'a> {
     points: Vec<[f64; 3]>,
     weights: Vec<f64>,
     tets: Tets,
+    /// Filters whose bounds are fixed by the points' bounding box.
+    filter: BoxFilter,
     /// What became of each vertex, in insertion order.
     state: Vec<PointState>,
     /// Where the next walk starts.
@@ -98,13 +100,15 @@ impl<'a> Triangulation<'a> {
             )));
         }
         validate_points(points, weights)?;
-        let order = sort::brio_order(points);
+        let (lo, hi) = bounding_box(points);
+        let order = sort::brio_order(points, &lo, &hi);
         let sorted = order.iter().map(|&i| points[i as usize]).collect();
         let weights = match weights {
             Some(w) => order.iter().map(|&i| w[i as usize]).collect(),
             None => Vec::new(),
         };
         Ok(Triangulation {
+            filter: BoxFilter::new(&lo, &hi),
             input: points,
             order,
             points: sorted,
@@ -286,6 +290,19 @@ fn too_few(n: usize, what: &str) -> Error {
     Error::invalid_input(format!(
         "{what} ({n} points): a tetrahedralization needs 4 affinely independent points"
     ))
+}
+
+/// The smallest box containing the points.
+fn bounding_box(points: &[[f64; 3]]) -> (Point, Point) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (lo, hi)
 }
 
 /// Exact collinearity: the cross product vanishes iff its three projections do.

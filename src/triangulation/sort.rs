@@ -15,9 +15,10 @@ const FIRST_ROUND: usize = 64;
 const ROUND_RATIO: usize = 8;
 const SEED: u64 = 0x00de_1e5a_u64;
 
-/// A permutation of `0..points.len()`: BRIO rounds, each in Hilbert order.
-pub fn brio_order(points: &[[f64; 3]]) -> Vec<u32> {
-    let keys = hilbert_keys(points);
+/// A permutation of `0..points.len()`: BRIO rounds, each in Hilbert order. `lo` and `hi`
+/// bound the points.
+pub fn brio_order(points: &[[f64; 3]], lo: &[f64; 3], hi: &[f64; 3]) -> Vec<u32> {
+    let keys = hilbert_keys(points, lo, hi);
     let mut order: Vec<u32> = (0..points.len() as u32).collect();
     shuffle(&mut order);
     let mut pairs = Vec::new();
@@ -56,16 +57,8 @@ fn rounds(n: usize) -> Vec<std::ops::Range<usize>> {
     ranges
 }
 
-/// Hilbert-curve index of every point, on a 2^21 grid spanning the bounding box.
-fn hilbert_keys(points: &[[f64; 3]]) -> Vec<u64> {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
+/// Hilbert-curve index of every point, on a 2^21 grid spanning the box `lo..hi`.
+fn hilbert_keys(points: &[[f64; 3]], lo: &[f64; 3], hi: &[f64; 3]) -> Vec<u64> {
     let cells = f64::from((1u32 << HILBERT_BITS) - 1);
     let scale = [0, 1, 2].map(|k| {
         let extent = hi[k] - lo[k];
@@ -143,11 +136,12 @@ mod tests {
                 [(f * 0.37).sin(), (f * 0.11).cos(), (f * 0.07).sin()]
             })
             .collect();
-        let a = brio_order(&pts);
+        let (lo, hi) = ([-1.0; 3], [1.0; 3]);
+        let a = brio_order(&pts, &lo, &hi);
         let mut s = a.clone();
         s.sort_unstable();
         assert!(s.iter().enumerate().all(|(i, &v)| v as usize == i));
-        assert_eq!(a, brio_order(&pts));
+        assert_eq!(a, brio_order(&pts, &lo, &hi));
     }
 
     #[test]
