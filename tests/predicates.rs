@@ -831,7 +831,7 @@ fn box_filter_agrees_with_the_full_predicates() {
     let boxes = [([0.0; 3], [1.0; 3]), ([-1e3, 5.0, 2e-3], [1e3, 6.0, 3e-3])];
     for (lo, hi) in boxes {
         let filter = BoxFilter::new(&lo, &hi);
-        let mut point = |rng: &mut Pcg64, lattice: bool| -> Point {
+        let point = |rng: &mut Pcg64, lattice: bool| -> Point {
             std::array::from_fn(|k| {
                 let t = if lattice {
                     // The box's corners: all cospherical.
