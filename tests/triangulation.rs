@@ -213,3 +213,28 @@ fn copies_of_hidden_points_are_duplicates() {
     assert_eq!(mesh.duplicate_count(), 3);
     assert!((8..14).all(|v| !mesh.tetrahedra.contains(&v)));
 }
+
+#[test]
+fn output_is_bit_identical_across_runs() {
+    let xyz = random_points(3000, 21);
+    assert_eq!(
+        delaunay_tetrahedralize(&xyz).unwrap(),
+        delaunay_tetrahedralize(&xyz).unwrap()
+    );
+    let w: Vec<f64> = (0..3000).map(|i| f64::from(i % 7) * 1e-4).collect();
+    assert_eq!(
+        regular_tetrahedralize(&xyz, &w).unwrap(),
+        regular_tetrahedralize(&xyz, &w).unwrap()
+    );
+    let g = grid(7);
+    let threads: Vec<_> = (0..2)
+        .map(|_| {
+            let g = g.clone();
+            std::thread::spawn(move || delaunay_tetrahedralize(&g).unwrap())
+        })
+        .collect();
+    let mut results = threads.into_iter().map(|t| t.join().unwrap());
+    let (a, b) = (results.next().unwrap(), results.next().unwrap());
+    assert_eq!(a, b);
+    assert_eq!(a, delaunay_tetrahedralize(&g).unwrap());
+}
