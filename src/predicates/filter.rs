@@ -311,20 +311,32 @@ impl BoxBounds {
         }
     }
 
-    /// [`orient3d`] with the box's bound.
+    /// [`orient3d`]: the box's bound first, then, on the same determinant, the bound of the
+    /// call's own maxima.
     #[inline]
     pub fn orient3d(&self, a: &Point, b: &Point, c: &Point, d: &Point) -> Option<Sign> {
         let [r, s, t] = [diff::<3>(b, a), diff::<3>(c, a), diff::<3>(d, a)];
         let det = (r[2] * minor(&s, &t) - s[2] * minor(&r, &t)) + t[2] * minor(&r, &s);
-        certify(det, self.orient3d)
+        certify(det, self.orient3d).or_else(|| {
+            let m = maxima(&[r, s, t]);
+            let (smallest, largest) = extremes(&m);
+            ORIENT3D.certify(det, m[0] * m[1] * m[2], smallest, largest)
+        })
     }
 
-    /// [`insphere`] with the box's bound.
+    /// [`insphere`]: the box's bound first, then, on the same determinant, the bound of the
+    /// call's own maxima.
     #[inline]
     pub fn insphere(&self, a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Option<Sign> {
         let rows = [a, b, c, d].map(|p| diff::<3>(p, e));
         let lifts = rows.map(|r| square_norm(&r));
-        certify(-lifted_det4(&rows, &lifts), self.insphere)
+        let det = -lifted_det4(&rows, &lifts);
+        certify(det, self.insphere).or_else(|| {
+            let m = maxima(&rows);
+            let (smallest, largest) = extremes(&m);
+            let unit = m[0] * m[1] * m[2] * largest * largest;
+            INSPHERE.certify(det, unit, smallest, largest)
+        })
     }
 }
 

@@ -132,7 +132,8 @@ pub fn insphere(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
 }
 
 /// The hot predicates of a triangulation whose points all lie in one box: a first filter
-/// whose bound is fixed by the box (no per-call maxima), then the full predicate.
+/// whose bound is fixed by the box (no per-call maxima), then the ordinary filter bound on the
+/// same determinant, then the exact stage.
 #[derive(Clone, Copy, Debug)]
 pub struct BoxFilter(filter::BoxBounds);
 
@@ -147,7 +148,7 @@ impl BoxFilter {
     pub fn orient3d(&self, a: &Point, b: &Point, c: &Point, d: &Point) -> Sign {
         match self.0.orient3d(a, b, c, d) {
             Some(sign) => sign,
-            None => orient3d(a, b, c, d),
+            None => exact::orient3d(a, b, c, d),
         }
     }
 
@@ -156,7 +157,10 @@ impl BoxFilter {
     pub fn insphere_sos(&self, a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
         match self.0.insphere(a, b, c, d, e) {
             Some(sign) => sign,
-            None => insphere_sos(a, b, c, d, e),
+            None => match exact::insphere(a, b, c, d, e) {
+                Sign::Zero => perturb::insphere(a, b, c, d, e),
+                sign => sign,
+            },
         }
     }
 }
