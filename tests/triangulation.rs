@@ -238,3 +238,18 @@ fn output_is_bit_identical_across_runs() {
     assert_eq!(a, b);
     assert_eq!(a, delaunay_tetrahedralize(&g).unwrap());
 }
+
+#[test]
+fn quadratic_output_grows_past_the_reservation() {
+    // Points on the moment curve (t, t^2, t^3) have a Delaunay triangulation with a number of
+    // tetrahedra quadratic in n, far beyond the 7 per point reserved up front.
+    let n = 120;
+    let xyz: Vec<f64> = (0..n)
+        .flat_map(|i| {
+            let t = f64::from(i);
+            [t, t * t, t * t * t]
+        })
+        .collect();
+    let count = check(&xyz, None);
+    assert!(count > 7 * n as usize, "{count} tetrahedra");
+}

@@ -280,7 +280,7 @@ impl Triangulation<'_> {
         for k in 0..nb {
             let t = match s.cavity.get(k) {
                 Some(&t) => t,
-                None => self.tets.allocate(),
+                None => self.tets.allocate()?,
             };
             s.new_tets.push(t);
         }

@@ -213,17 +213,17 @@ impl<'a> Triangulation<'a> {
         } else {
             (b, a)
         };
-        self.build_first_tetrahedron([a, b, c, d]);
+        self.build_first_tetrahedron([a, b, c, d])?;
         Ok([a, b, c, d])
     }
 
-    fn build_first_tetrahedron(&mut self, v: [u32; 4]) {
-        let t0 = self.tets.allocate();
+    fn build_first_tetrahedron(&mut self, v: [u32; 4]) -> Result<()> {
+        let t0 = self.tets.allocate()?;
         self.tets.set(t0, v);
         for i in 0..4 {
             let [f0, f1, f2] = tets::FACE[i].map(|k| v[k]);
             // Reversed facet + infinite vertex: positive with the outer side substituted.
-            let ti = self.tets.allocate();
+            let ti = self.tets.allocate()?;
             self.tets.set(ti, [f1, f0, f2, INFINITE]);
             self.tets.glue(4 * t0 + i as u32, 4 * ti + 3);
         }
@@ -238,6 +238,7 @@ impl<'a> Triangulation<'a> {
             self.state[i as usize] = PointState::Inserted;
         }
         self.hint = t0;
+        Ok(())
     }
 
     /// Local facet indices by which tetrahedra `a` and `b` (sharing three vertices) touch.

@@ -10,6 +10,11 @@
 //! - adjacency is symmetric: facet `4t+i` is glued to `4t'+j` iff `4t'+j` is glued to `4t+i`, and glued facets have the same vertex set;
 //! - dead tetrahedra have `DEAD` as first vertex and are listed in `free`.
 
+use crate::error::{Error, ErrorKind, Result};
+
+/// Most tetrahedra a triangulation holds: facets are addressed as `4*t+i` in 32 bits.
+pub const MAX_TETRAHEDRA: usize = 1 << 30;
+
 /// The vertex at infinity that closes the convex hull.
 pub const INFINITE: u32 = u32::MAX;
 /// First vertex of a dead (recyclable) tetrahedron.
@@ -31,9 +36,9 @@ pub struct Tets {
 }
 
 impl Tets {
-    pub fn with_capacity(tets: usize) -> crate::Result<Self> {
+    pub fn with_capacity(tets: usize) -> Result<Self> {
         let mut s = Tets::default();
-        let oom = |_| crate::Error::new(crate::ErrorKind::OutOfMemory, "cannot reserve tetrahedra");
+        let oom = |_| Error::new(ErrorKind::OutOfMemory, "cannot reserve tetrahedra");
         s.data.try_reserve(8 * tets).map_err(oom)?;
         s.mark.try_reserve(tets).map_err(oom)?;
         Ok(s)
@@ -79,17 +84,40 @@ impl Tets {
         self.vertices(t).iter().position(|&v| v == INFINITE)
     }
 
-    /// A slot for a new tetrahedron: a recycled one if any.
+    /// A slot for a new tetrahedron: a recycled one if any. Growth past the reservation is
+    /// fallible, so an input with far more tetrahedra than points (points on the moment curve
+    /// have quadratically many) ends in an error, not an abort.
     #[inline]
-    pub fn allocate(&mut self) -> u32 {
+    pub fn allocate(&mut self) -> Result<u32> {
         if let Some(t) = self.free.pop() {
-            return t;
+            return Ok(t);
         }
-        let t = self.mark.len() as u32;
+        let t = self.mark.len();
+        if t == self.mark.capacity() {
+            self.grow()?;
+        }
         self.data
             .extend_from_slice(&[DEAD, DEAD, DEAD, DEAD, 0, 0, 0, 0]);
         self.mark.push(0);
-        t
+        Ok(t as u32)
+    }
+
+    #[cold]
+    fn grow(&mut self) -> Result<()> {
+        let slots = self.slots();
+        if slots >= MAX_TETRAHEDRA {
+            return Err(Error::new(
+                ErrorKind::Limit,
+                format!("the triangulation needs more than {MAX_TETRAHEDRA} tetrahedra"),
+            ));
+        }
+        let more = (slots / 2 + 16).min(MAX_TETRAHEDRA - slots);
+        let oom = |_| {
+            let message = format!("cannot grow past {slots} tetrahedra");
+            Error::new(ErrorKind::OutOfMemory, message)
+        };
+        self.data.try_reserve_exact(8 * more).map_err(oom)?;
+        self.mark.try_reserve_exact(more).map_err(oom)
     }
 
     #[inline]
