@@ -1,12 +1,12 @@
 //! Bowyer–Watson insertion of one point: walk, conflict cavity, cone over its boundary.
 //!
-//! The cavity is found by breadth-first search from the located tetrahedron, with a one-byte
-//! mark per tetrahedron (in conflict / tested, not in conflict) that the filling clears again:
-//! the marked tetrahedra are exactly the cavity and its outer neighbours. The new tetrahedra reuse the
-//! cavity's slots and are glued to each other through a small open-addressing table keyed by
-//! the directed cavity-boundary edges: the facet `(p, x, y)` of one new tetrahedron meets the
-//! facet `(p, y, x)` of another. Nothing is allocated per insertion once the scratch buffers
-//! have grown to the largest cavity.
+//! The cavity is found by a graph search (a stack, so depth-first) from the located
+//! tetrahedron, with a one-byte mark per tetrahedron (in conflict / tested, not in conflict)
+//! that the filling clears again: the marked tetrahedra are exactly the cavity and its outer
+//! neighbours. The new tetrahedra reuse the cavity's slots and are glued to each other through
+//! a small open-addressing table keyed by the cavity-boundary edges: the two new facets that
+//! contain `p` and the boundary edge `{x, y}` meet there. Nothing is allocated per insertion
+//! once the scratch buffers have grown to the largest cavity.
 
 use super::tets::{FACE, INFINITE};
 use super::{PointState, Triangulation};
@@ -97,7 +97,7 @@ const TOMBSTONE: u64 = u64::MAX;
 pub(super) enum Located {
     /// A tetrahedron in conflict with the point.
     Conflict(u32),
-    /// The point coincides with this vertex (and has the same weight).
+    /// The point coincides with this vertex (Delaunay triangulations only).
     Duplicate(u32),
     /// The point's power cell is empty (regular triangulations only).
     Hidden,
@@ -164,14 +164,17 @@ impl Triangulation<'_> {
 
     /// `p` lies in the closed finite tetrahedron `t`: duplicate, hidden, or in conflict.
     fn classify_in(&self, t: u32, p: u32) -> Result<Located> {
-        let q = self.point(p);
-        for w in self.tets.vertices(t) {
-            if self.point(w) == q {
-                let same =
-                    !self.is_regular() || self.weights[w as usize] == self.weights[p as usize];
-                if same {
-                    return Ok(Located::Duplicate(w));
-                }
+        // Exact copies of weighted points are set aside before insertion: a weighted point at a
+        // vertex's position has another weight, and the power test decides between them.
+        if !self.is_regular() {
+            let q = self.point(p);
+            if let Some(w) = self
+                .tets
+                .vertices(t)
+                .into_iter()
+                .find(|&w| self.point(w) == q)
+            {
+                return Ok(Located::Duplicate(w));
             }
         }
         if self.in_conflict(t, p) {
@@ -235,7 +238,7 @@ impl Triangulation<'_> {
         [p[0], p[1], p[2], self.weights[v as usize]]
     }
 
-    /// Breadth-first search of the tetrahedra in conflict with `p`, starting from `t0`
+    /// Search of the tetrahedra in conflict with `p`, starting from `t0`
     /// (in conflict). Fills `scratch.cavity` and `scratch.boundary`.
     fn find_cavity(&mut self, t0: u32, p: u32) {
         let mut s = std::mem::take(&mut self.scratch);

@@ -1,7 +1,7 @@
 //! 3D Delaunay and regular (weighted Delaunay) triangulations (DESIGN.md layer 2).
 //!
 //! Bowyer–Watson insertion: locate the point by a visibility walk from the last created
-//! tetrahedron, grow its conflict cavity by breadth-first search, and fill the cavity with the
+//! tetrahedron, grow its conflict cavity by a search across facets, and fill the cavity with the
 //! cone from the new point over the cavity boundary. The convex hull is closed by tetrahedra
 //! incident to an [`INFINITE`](tets::INFINITE) vertex, so every point, inside or outside the
 //! current hull, is inserted the same way.
