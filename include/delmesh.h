@@ -50,6 +50,36 @@
 #define DELMESH_ABI_VERSION 1
 
 /*
+ Progress phase: the initial surface points are inserted.
+ */
+#define DELMESH_PHASE_INITIAL 0
+
+/*
+ Progress phase: the surface is being refined.
+ */
+#define DELMESH_PHASE_SURFACE 1
+
+/*
+ Progress phase: the volume is being refined.
+ */
+#define DELMESH_PHASE_VOLUME 2
+
+/*
+ `delmesh_mesher_set_sizing_field`: the field replaces the cell size bound.
+ */
+#define DELMESH_SIZING_CELL_SIZE 3
+
+/*
+ `delmesh_mesher_set_sizing_field`: the field replaces the facet distance bound.
+ */
+#define DELMESH_SIZING_FACET_DISTANCE 2
+
+/*
+ `delmesh_mesher_set_sizing_field`: the field replaces the facet size bound.
+ */
+#define DELMESH_SIZING_FACET_SIZE 1
+
+/*
  The outcome of a fallible call. Values are explicit and never reused: a new status
  is added at the end with a new number.
  */
@@ -98,6 +128,16 @@ typedef enum DelmeshStatus {
 } DelmeshStatus;
 
 /*
+ An opaque domain, created by `delmesh_domain_new_implicit` or `delmesh_domain_new_labeled`
+ and released with `delmesh_domain_free`.
+
+ Thread-safety: a domain is only read by `delmesh_mesher_run`; two runs may share it on
+ two threads only if its callbacks are thread-safe. `delmesh_domain_add_surface_points`
+ must not run concurrently with any other use of the same domain.
+ */
+typedef struct DelmeshDomain DelmeshDomain;
+
+/*
  An opaque result mesh, produced by a `delmesh_*` call through its `DelmeshMesh **out`
  parameter. The caller owns it and releases it with `delmesh_mesh_free`.
 
@@ -106,6 +146,57 @@ typedef enum DelmeshStatus {
  not run concurrently with any other use of the same mesh.
  */
 typedef struct DelmeshMesh DelmeshMesh;
+
+/*
+ An opaque mesher: criteria and options, created by `delmesh_mesher_new`, released with
+ `delmesh_mesher_free`.
+
+ Thread-safety: setters must not run concurrently with any other use of the same
+ mesher; `delmesh_mesher_run` only reads it.
+ */
+typedef struct DelmeshMesher DelmeshMesher;
+
+/*
+ An implicit function: negative inside the domain, positive or zero outside. Returning
+ NaN reports a failure: the run stops with `DELMESH_ERROR_CALLBACK`.
+ */
+typedef double (*DelmeshImplicitFn)(const double *p, void *user_data);
+
+/*
+ A labeling function: 0 outside, > 0 the subdomain containing `p`. A negative value
+ reports a failure: the run stops with `DELMESH_ERROR_CALLBACK`.
+ */
+typedef int32_t (*DelmeshLabelFn)(const double *p, void *user_data);
+
+/*
+ A progress report, passed to the progress callback.
+ */
+typedef struct DelmeshProgress {
+    /*
+     DELMESH_PHASE_INITIAL, DELMESH_PHASE_SURFACE or DELMESH_PHASE_VOLUME.
+     */
+    int32_t phase;
+    size_t vertices;
+    size_t tetrahedra;
+    /*
+     A rough estimate of the work done, in [0, 1).
+     */
+    double fraction;
+} DelmeshProgress;
+
+/*
+ Called now and then during a run; returning nonzero cancels it
+ (`DELMESH_ERROR_CANCELLED`).
+ */
+typedef int32_t (*DelmeshProgressFn)(const struct DelmeshProgress *p, void *user_data);
+
+/*
+ A sizing field: the bound at `p` for an element of `dimension` (2: a surface facet,
+ `index` = (low label << 16) | high label of the two subdomains it separates; 3: a cell,
+ `index` = its subdomain). Must return a positive finite number; anything else stops the
+ run with `DELMESH_ERROR_CALLBACK`.
+ */
+typedef double (*DelmeshSizingFn)(const double *p, int32_t dimension, int32_t index, void *user_data);
 
 #ifdef __cplusplus
 extern "C" {
@@ -140,6 +231,72 @@ uint32_t delmesh_abi_version(void);
 enum DelmeshStatus delmesh_delaunay_tetrahedralize(const double *xyz,
                                                    size_t n,
                                                    struct DelmeshMesh **out);
+
+/*
+ Adds `n` points (x y z interleaved) on the domain's surface: they become initial surface
+ vertices, so that components too small for the initial search are meshed too.
+
+ Errors: NULL `d` or `xyz` -> `DELMESH_ERROR_NULL_ARGUMENT`; a point not finite or
+ outside the box -> `DELMESH_ERROR_INVALID_INPUT` (nothing is added).
+
+ # Safety
+ `d` is NULL or a live domain; `xyz` is NULL or 3 * n readable doubles.
+ */
+enum DelmeshStatus delmesh_domain_add_surface_points(struct DelmeshDomain *d,
+                                                     const double *xyz,
+                                                     size_t n);
+
+/*
+ Releases a domain; NULL is ignored.
+
+ # Safety
+ `d` is NULL or a domain not yet freed, not in use by a running mesher.
+ */
+void delmesh_domain_free(struct DelmeshDomain *d);
+
+/*
+ A domain given by an implicit function `f` (negative inside: one subdomain, label 1)
+ inside the box `bbox` = {xmin, ymin, zmin, xmax, ymax, zmax}.
+
+ `f` must be positive or zero (outside) everywhere on the boundary of `bbox`; the run
+ checks this on a grid and fails with `DELMESH_ERROR_INVALID_INPUT` otherwise.
+ `relative_error` bounds the distance from surface vertices to the surface `f = 0`,
+ relative to the box diagonal, in (0, 0.1] (1e-6 is a good default). `user_data` is
+ passed to every call of `f`, which is called only during `delmesh_mesher_run`, from
+ the calling thread.
+
+ On success `*out` receives a new domain owned by the caller (free it with
+ `delmesh_domain_free`); on failure `*out` is untouched. Errors: NULL `f`, `bbox` or
+ `out` -> `DELMESH_ERROR_NULL_ARGUMENT`; an empty or non-finite box, or
+ `relative_error` outside (0, 0.1] -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+
+ # Safety
+ `bbox` is NULL or 6 readable doubles; `out` is NULL or writable; `f` may be called with
+ `user_data` until the domain is freed.
+ */
+enum DelmeshStatus delmesh_domain_new_implicit(DelmeshImplicitFn f,
+                                               void *user_data,
+                                               const double *bbox,
+                                               double relative_error,
+                                               struct DelmeshDomain **out);
+
+/*
+ A domain given by a labeling function `f`: 0 outside, > 0 the subdomain containing the
+ point (any number of subdomains; the surfaces between different labels are meshed as
+ interfaces), inside the box `bbox` = {xmin, ymin, zmin, xmax, ymax, zmax}.
+
+ `f` must return 0 everywhere on the boundary of `bbox` (checked on a grid during the
+ run: `DELMESH_ERROR_INVALID_INPUT`). `relative_error`, `user_data`, ownership and errors
+ as for `delmesh_domain_new_implicit`.
+
+ # Safety
+ As for `delmesh_domain_new_implicit`.
+ */
+enum DelmeshStatus delmesh_domain_new_labeled(DelmeshLabelFn f,
+                                              void *user_data,
+                                              const double *bbox,
+                                              double relative_error,
+                                              struct DelmeshDomain **out);
 
 /*
  The message of the last failed call on the calling thread, or "" if none failed yet.
@@ -328,6 +485,141 @@ const double *delmesh_mesh_vertices(const struct DelmeshMesh *m);
  `m` is NULL or a mesh not yet freed; `path` is NULL or a NUL-terminated string.
  */
 enum DelmeshStatus delmesh_mesh_write(const struct DelmeshMesh *m, const char *path);
+
+/*
+ Releases a mesher; NULL is ignored.
+
+ # Safety
+ `m` is NULL or a mesher not yet freed and not running.
+ */
+void delmesh_mesher_free(struct DelmeshMesher *m);
+
+/*
+ A new mesher with no bound set: only the facet topology criterion (every vertex of a
+ surface facet lies on the surface) holds, as in CGAL Mesh_3. Set at least a facet size
+ or distance and a cell bound for a useful mesh.
+
+ Errors: NULL `out` -> `DELMESH_ERROR_NULL_ARGUMENT`.
+
+ # Safety
+ `out` is NULL or writable.
+ */
+enum DelmeshStatus delmesh_mesher_new(struct DelmeshMesher **out);
+
+/*
+ Meshes domain `d` with the criteria of `m`: a tetrahedral mesh of every subdomain
+ (labels > 0), the surface and interface facets with their label pairs, vertex
+ dimensions 2 (surface) and 3 (volume); only used vertices, numbered compactly. The same
+ mesher and domain give bit-identical arrays.
+
+ On success `*out` receives a new mesh owned by the caller; on failure it is untouched
+ and nothing leaks. Errors: NULL `m`, `d` or `out` -> `DELMESH_ERROR_NULL_ARGUMENT`; the
+ domain inside on the boundary of its box, or no surface found ->
+ `DELMESH_ERROR_INVALID_INPUT`; a callback reported failure -> `DELMESH_ERROR_CALLBACK`;
+ the progress callback cancelled -> `DELMESH_ERROR_CANCELLED`; the vertex budget ran
+ out -> `DELMESH_ERROR_LIMIT`.
+
+ # Safety
+ `m` and `d` are NULL or live handles; `out` is NULL or writable. Callbacks must not
+ unwind (C++ exceptions) into delmesh.
+ */
+enum DelmeshStatus delmesh_mesher_run(const struct DelmeshMesher *m,
+                                      const struct DelmeshDomain *d,
+                                      struct DelmeshMesh **out);
+
+/*
+ Upper bound on circumradius / shortest edge of the cells, finite and at least 2 (below
+ 2, refinement is not guaranteed to terminate). Errors: NULL `m`; a value below 2,
+ infinite or NaN -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_cell_radius_edge_ratio(struct DelmeshMesher *m, double ratio);
+
+/*
+ Upper bound on the circumradius of the cells (positive, finite). Errors as for
+ `delmesh_mesher_set_facet_size`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_cell_size(struct DelmeshMesher *m, double size);
+
+/*
+ Lower bound on the angles of surface facets, in degrees, in (0, 30].
+ Errors: NULL `m`; a value outside (0, 30] or NaN -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_facet_angle(struct DelmeshMesher *m, double degrees);
+
+/*
+ Upper bound on the distance from a surface facet's circumcenter to the center of its
+ surface Delaunay ball (positive, finite). Errors as for `delmesh_mesher_set_facet_size`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_facet_distance(struct DelmeshMesher *m, double distance);
+
+/*
+ Upper bound on the radius of the surface Delaunay balls of surface facets (positive,
+ finite). Errors: NULL `m`; zero, negative, infinite or NaN ->
+ `DELMESH_ERROR_INVALID_ARGUMENT`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_facet_size(struct DelmeshMesher *m, double size);
+
+/*
+ Whether every vertex of a surface facet must lie on the surface (nonzero, the default)
+ or not (0). Errors: NULL `m`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_facet_topology(struct DelmeshMesher *m,
+                                                     int32_t vertices_on_surface);
+
+/*
+ Largest number of vertices a run may create; past it the run stops with
+ `DELMESH_ERROR_LIMIT`. 0 (the default) means no limit. Errors: NULL `m`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_max_vertices(struct DelmeshMesher *m, size_t max_vertices);
+
+/*
+ Sets (or, with a NULL `f`, removes) the progress callback, called with `user_data` from
+ the thread running `delmesh_mesher_run` every few thousand insertions; a nonzero return
+ stops the run with `DELMESH_ERROR_CANCELLED`. Errors: NULL `m`.
+
+ # Safety
+ `m` is NULL or a live mesher; `f` may be called with `user_data` until the mesher is
+ freed.
+ */
+enum DelmeshStatus delmesh_mesher_set_progress(struct DelmeshMesher *m,
+                                               DelmeshProgressFn f,
+                                               void *user_data);
+
+/*
+ Replaces the constant bound `which` (DELMESH_SIZING_FACET_SIZE,
+ DELMESH_SIZING_FACET_DISTANCE or DELMESH_SIZING_CELL_SIZE) by the field `f`, called with
+ `user_data` during `delmesh_mesher_run` from the calling thread. Errors: NULL `m` or `f`
+ -> `DELMESH_ERROR_NULL_ARGUMENT`; an unknown `which` -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+
+ # Safety
+ `m` is NULL or a live mesher; `f` may be called with `user_data` until the mesher is
+ freed.
+ */
+enum DelmeshStatus delmesh_mesher_set_sizing_field(struct DelmeshMesher *m,
+                                                   int32_t which,
+                                                   DelmeshSizingFn f,
+                                                   void *user_data);
 
 /*
  Regular (weighted Delaunay) tetrahedralization of the `n` points `xyz` (x y z

@@ -5,14 +5,20 @@
 //! - [`predicates`]: exact orientation, in-sphere and power tests with a deterministic
 //!   symbolic perturbation;
 //! - [`triangulation`]: 3D Delaunay and regular triangulations in flat index arrays;
+//! - [`domain`]: the geometry as an oracle (implicit and labeling functions);
+//! - [`criteria`]: facet and cell bounds, constant or sizing fields;
+//! - [`refine`]: oracle-driven Delaunay refinement (restricted Delaunay, refinement levels);
 //! - [`mesh`]: the result type handed to users;
 //! - `ffi`: the C ABI, a panic boundary around every exported function.
 
+pub mod criteria;
+pub mod domain;
 pub mod error;
 pub mod ffi;
 pub mod io;
 pub mod mesh;
 pub mod predicates;
+pub mod refine;
 pub mod triangulation;
 
 pub use error::{Error, ErrorKind, Result};

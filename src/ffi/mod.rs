@@ -20,7 +20,9 @@
 //! hook (by default, a line on stderr) runs once and the panic payload is turned into
 //! the `DELMESH_ERROR_INTERNAL` message here. The boundary itself never prints.
 
+pub mod domain;
 pub mod mesh;
+pub mod mesher;
 pub mod status;
 pub mod triangulate;
 pub mod version;

@@ -24,10 +24,10 @@ const NOT_IN_CONFLICT: u8 = 2;
 #[derive(Default)]
 pub struct Scratch {
     stack: Vec<u32>,
-    cavity: Vec<u32>,
+    pub(super) cavity: Vec<u32>,
     /// Boundary facets as (new vertex quadruple, outer facet `4*t'+j`, local index of p).
-    boundary: Vec<([u32; 4], u32, u8)>,
-    new_tets: Vec<u32>,
+    pub(super) boundary: Vec<([u32; 4], u32, u8)>,
+    pub(super) new_tets: Vec<u32>,
     edges: EdgeTable,
 }
 
@@ -240,7 +240,7 @@ impl Triangulation<'_> {
 
     /// Search of the tetrahedra in conflict with `p`, starting from `t0`
     /// (in conflict). Fills `scratch.cavity` and `scratch.boundary`.
-    fn find_cavity(&mut self, t0: u32, p: u32) {
+    pub(super) fn find_cavity(&mut self, t0: u32, p: u32) {
         let mut s = std::mem::take(&mut self.scratch);
         s.cavity.clear();
         s.boundary.clear();
@@ -275,8 +275,18 @@ impl Triangulation<'_> {
         self.scratch = s;
     }
 
+    /// Clears the marks [`Self::find_cavity`] left (on the cavity and its outer neighbours).
+    pub(super) fn clear_marks(&mut self) {
+        for &t in &self.scratch.cavity {
+            self.tets.mark[t as usize] = UNMARKED;
+        }
+        for &(_, outer, _) in &self.scratch.boundary {
+            self.tets.mark[(outer >> 2) as usize] = UNMARKED;
+        }
+    }
+
     /// Replaces the cavity by the cone from `p` over its boundary.
-    fn fill_cavity(&mut self, p: u32) -> Result<()> {
+    pub(super) fn fill_cavity(&mut self, p: u32) -> Result<()> {
         let mut s = std::mem::take(&mut self.scratch);
         let nb = s.boundary.len();
         s.new_tets.clear();

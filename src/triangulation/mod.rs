@@ -16,10 +16,13 @@
 //! facets (local Delaunay/regularity, equivalent to the global property). `validate` checks
 //! them all exactly.
 
+mod incremental;
 mod insert;
 mod sort;
 pub mod tets;
 mod validate;
+
+pub use incremental::Conflicts;
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::mesh::{Mesh, DIMENSION_UNKNOWN};
@@ -87,6 +90,8 @@ pub struct Triangulation<'a> {
     /// Walk randomization (xorshift32), deterministic.
     rng: u32,
     scratch: insert::Scratch,
+    /// The box every vertex lies in (the filters' bounds).
+    bounds: (Point, Point),
 }
 
 impl<'a> Triangulation<'a> {
@@ -118,6 +123,7 @@ impl<'a> Triangulation<'a> {
             hint: 0,
             rng: 0x9e37_79b9,
             scratch: insert::Scratch::default(),
+            bounds: (lo, hi),
         })
     }
 

@@ -1,0 +1,286 @@
+//! Mesh criteria and sizing fields (DESIGN.md layer 4; Rineau's thesis §3.2.2 and §3.4, with
+//! the meaning CGAL Mesh_3 gives its criteria, so that the same numbers mean the same mesh).
+//!
+//! Facets (restricted facets of the surface, each with its surface Delaunay ball):
+//! - angle: lower bound on the smallest angle of the facet, in degrees;
+//! - size: upper bound on the radius of the surface Delaunay ball;
+//! - distance: upper bound on the distance from the facet's circumcenter to the center of
+//!   its surface Delaunay ball (an approximation of the distance to the surface);
+//! - topology: every vertex of a restricted facet lies on the surface (rule R1).
+//!
+//! Cells (tetrahedra whose circumcenter lies in a subdomain):
+//! - radius-edge ratio: upper bound on circumradius / shortest edge;
+//! - size: upper bound on the circumradius.
+//!
+//! A criterion that was never set is not enforced. Sizes and distances are a constant or a
+//! field `size(p, dimension, index)` evaluated at the refinement point (the surface ball's
+//! center for facets, the circumcenter for cells): dimension 2 with index
+//! `(low << 16) | high` of the two labels the surface separates, dimension 3 with the
+//! subdomain label.
+//!
+//! Invariants (held by the setters): angle in `(0, 30]`; ratio finite and `>= 2`; constant
+//! sizes and distances finite and positive. Beyond 30° or below 2, Delaunay refinement is not
+//! guaranteed to terminate (thesis Th. 3.4; CGAL's documentation gives the same limits).
+
+use crate::error::{Error, ErrorKind, Result};
+use crate::predicates::Point;
+
+/// A sizing field: `(point, dimension, index) -> size`; a result that is not a positive
+/// finite number is a failure of the callback.
+pub type SizingFn = Box<dyn Fn(&Point, i32, i32) -> f64>;
+
+/// A size or distance bound.
+pub enum Size {
+    Constant(f64),
+    Field(SizingFn),
+}
+
+impl Size {
+    fn at(&self, p: &Point, dimension: i32, index: i32, what: &str) -> Result<f64> {
+        match self {
+            Size::Constant(v) => Ok(*v),
+            Size::Field(f) => {
+                let v = f(p, dimension, index);
+                if v.is_finite() && v > 0.0 {
+                    Ok(v)
+                } else {
+                    Err(Error::new(
+                        ErrorKind::Callback,
+                        format!(
+                            "the {what} sizing field returned {v} at {p:?} (dimension \
+                             {dimension}, index {index}): sizes must be positive and finite"
+                        ),
+                    ))
+                }
+            }
+        }
+    }
+}
+
+/// Which bound a sizing field replaces (`delmesh_mesher_set_sizing_field`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Which {
+    FacetSize,
+    FacetDistance,
+    CellSize,
+}
+
+/// How far an element is from meeting the criteria: the class (a topology failure before a
+/// shape or size failure) and the worst ratio of a measure to its bound (> 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Badness {
+    pub class: u8,
+    pub ratio: f64,
+}
+
+/// Class of a facet with a vertex off the surface (rule R1).
+pub const TOPOLOGY: u8 = 1;
+/// Class of an element that fails a shape, size or distance bound.
+pub const SHAPE_OR_SIZE: u8 = 0;
+
+#[derive(Default)]
+pub struct Criteria {
+    /// sin² of the facet angle bound.
+    facet_angle_sin2: Option<f64>,
+    facet_size: Option<Size>,
+    facet_distance: Option<Size>,
+    facet_topology: bool,
+    /// Square of the radius-edge bound.
+    cell_ratio2: Option<f64>,
+    cell_size: Option<Size>,
+}
+
+impl Criteria {
+    /// No bound set; facet topology (vertices on the surface) enforced, as in CGAL.
+    pub fn new() -> Self {
+        Criteria {
+            facet_topology: true,
+            ..Criteria::default()
+        }
+    }
+
+    pub fn set_facet_angle(&mut self, degrees: f64) -> Result<()> {
+        if !(degrees > 0.0 && degrees <= 30.0) {
+            return Err(Error::invalid_argument(format!(
+                "facet angle {degrees} must lie in (0, 30] degrees: above 30 the surface \
+                 refinement is not guaranteed to terminate"
+            )));
+        }
+        self.facet_angle_sin2 = Some(degrees.to_radians().sin().powi(2));
+        Ok(())
+    }
+
+    pub fn set_facet_size(&mut self, size: f64) -> Result<()> {
+        self.facet_size = Some(Size::Constant(positive("facet size", size)?));
+        Ok(())
+    }
+
+    pub fn set_facet_distance(&mut self, distance: f64) -> Result<()> {
+        self.facet_distance = Some(Size::Constant(positive("facet distance", distance)?));
+        Ok(())
+    }
+
+    pub fn set_facet_topology(&mut self, vertices_on_surface: bool) {
+        self.facet_topology = vertices_on_surface;
+    }
+
+    pub fn set_cell_radius_edge_ratio(&mut self, ratio: f64) -> Result<()> {
+        if !(ratio.is_finite() && ratio >= 2.0) {
+            return Err(Error::invalid_argument(format!(
+                "cell radius-edge ratio {ratio} must be finite and at least 2: below 2 the \
+                 volume refinement is not guaranteed to terminate"
+            )));
+        }
+        self.cell_ratio2 = Some(ratio * ratio);
+        Ok(())
+    }
+
+    pub fn set_cell_size(&mut self, size: f64) -> Result<()> {
+        self.cell_size = Some(Size::Constant(positive("cell size", size)?));
+        Ok(())
+    }
+
+    pub fn set_sizing_field(&mut self, which: Which, f: SizingFn) {
+        let slot = match which {
+            Which::FacetSize => &mut self.facet_size,
+            Which::FacetDistance => &mut self.facet_distance,
+            Which::CellSize => &mut self.cell_size,
+        };
+        *slot = Some(Size::Field(f));
+    }
+
+    /// The spacing at which a dual segment is sampled for crossings its ends do not show:
+    /// the facet size near `p`, or infinite when no facet size is set.
+    pub fn sampling_step(&self, p: &Point, labels: (i32, i32)) -> Result<f64> {
+        match &self.facet_size {
+            None => Ok(f64::INFINITY),
+            Some(s) => s.at(p, 2, patch_index(labels), "facet size"),
+        }
+    }
+
+    /// The badness of a restricted facet `tri` whose surface Delaunay ball has center
+    /// `center`, squared radius `radius2`, and separates `labels`; `on_surface` tells
+    /// whether all three vertices are surface points. `None` when it meets every criterion.
+    pub fn facet(
+        &self,
+        tri: [&Point; 3],
+        center: &Point,
+        radius2: f64,
+        labels: (i32, i32),
+        on_surface: bool,
+    ) -> Result<Option<Badness>> {
+        if self.facet_topology && !on_surface {
+            return Ok(Some(Badness {
+                class: TOPOLOGY,
+                ratio: f64::INFINITY,
+            }));
+        }
+        let index = patch_index(labels);
+        let mut worst = 0.0f64;
+        if let Some(bound) = self.facet_angle_sin2 {
+            worst = worst.max(bound / min_angle_sin2(tri));
+        }
+        if let Some(s) = &self.facet_size {
+            let s = s.at(center, 2, index, "facet size")?;
+            worst = worst.max(radius2 / (s * s));
+        }
+        if let Some(d) = &self.facet_distance {
+            let d = d.at(center, 2, index, "facet distance")?;
+            let c = triangle_circumcenter(tri);
+            worst = worst.max(dist2(&c, center) / (d * d));
+        }
+        Ok(bad(worst))
+    }
+
+    /// The badness of a cell `tet` with circumcenter `center` in subdomain `label`.
+    pub fn cell(&self, tet: [&Point; 4], center: &Point, label: i32) -> Result<Option<Badness>> {
+        let radius2 = dist2(center, tet[0]);
+        let mut worst = 0.0f64;
+        if let Some(bound2) = self.cell_ratio2 {
+            let shortest2 = (0..4)
+                .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+                .map(|(i, j)| dist2(tet[i], tet[j]))
+                .fold(f64::INFINITY, f64::min);
+            worst = worst.max(radius2 / shortest2 / bound2);
+        }
+        if let Some(s) = &self.cell_size {
+            let s = s.at(center, 3, label, "cell size")?;
+            worst = worst.max(radius2 / (s * s));
+        }
+        Ok(bad(worst))
+    }
+}
+
+fn bad(ratio: f64) -> Option<Badness> {
+    // NaN (a degenerate construction) counts as bad: refining it is the safe side.
+    (ratio > 1.0 || ratio.is_nan()).then_some(Badness {
+        class: SHAPE_OR_SIZE,
+        ratio: if ratio.is_nan() { f64::MAX } else { ratio },
+    })
+}
+
+fn positive(what: &str, v: f64) -> Result<f64> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(Error::invalid_argument(format!(
+            "{what} {v} must be positive and finite"
+        )))
+    }
+}
+
+/// The sizing-field index of the surface between two labels.
+pub fn patch_index(labels: (i32, i32)) -> i32 {
+    let (lo, hi) = (labels.0.min(labels.1), labels.0.max(labels.1));
+    lo.wrapping_shl(16) | (hi & 0xffff)
+}
+
+fn sub(a: &Point, b: &Point) -> Point {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(u: &Point, v: &Point) -> Point {
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
+}
+
+fn dot(u: &Point, v: &Point) -> f64 {
+    u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+}
+
+fn dist2(a: &Point, b: &Point) -> f64 {
+    let d = sub(a, b);
+    dot(&d, &d)
+}
+
+/// sin² of the smallest angle of a triangle: the angle opposite the shortest edge, whose
+/// sine is twice the area over the product of the two other edges.
+pub fn min_angle_sin2(t: [&Point; 3]) -> f64 {
+    let e = [dist2(t[1], t[2]), dist2(t[2], t[0]), dist2(t[0], t[1])];
+    let w = cross(&sub(t[1], t[0]), &sub(t[2], t[0]));
+    let shortest = (0..3).fold(0, |m, k| if e[k] < e[m] { k } else { m });
+    let others = e[(shortest + 1) % 3] * e[(shortest + 2) % 3];
+    dot(&w, &w) / others
+}
+
+/// The center of the circle through the triangle's vertices.
+pub fn triangle_circumcenter(t: [&Point; 3]) -> Point {
+    let (u, v) = (sub(t[1], t[0]), sub(t[2], t[0]));
+    let w = cross(&u, &v);
+    let (a, b) = (cross(&v, &w), cross(&w, &u));
+    let (nu, nv, nw) = (dot(&u, &u), dot(&v, &v), 2.0 * dot(&w, &w));
+    std::array::from_fn(|k| t[0][k] + (nu * a[k] + nv * b[k]) / nw)
+}
+
+/// The center of the sphere through the tetrahedron's vertices (not finite when they are
+/// coplanar in floating point).
+pub fn circumcenter(t: [&Point; 4]) -> Point {
+    let (u, v, w) = (sub(t[1], t[0]), sub(t[2], t[0]), sub(t[3], t[0]));
+    let (nu, nv, nw) = (dot(&u, &u), dot(&v, &v), dot(&w, &w));
+    let (vw, wu, uv) = (cross(&v, &w), cross(&w, &u), cross(&u, &v));
+    let det2 = 2.0 * dot(&u, &vw);
+    std::array::from_fn(|k| t[0][k] + (nu * vw[k] + nv * wu[k] + nw * uv[k]) / det2)
+}
