@@ -64,6 +64,16 @@ const REPORT_EVERY: usize = 4096;
 /// Errors: a callback failed (`Callback`), the vertex budget was reached (`Limit`), the
 /// progress callback cancelled (`Cancelled`), the domain is unusable (`InvalidInput`).
 pub fn refine(domain: &dyn Domain, criteria: &Criteria, limits: Limits) -> Result<Mesh> {
+    refine_complex(domain, criteria, limits).map(|c| c.to_mesh())
+}
+
+/// [`refine`], returning the restricted Delaunay triangulation itself (for
+/// [`Complex::validate`] and [`Complex::to_mesh`]).
+pub fn refine_complex<'a>(
+    domain: &'a dyn Domain,
+    criteria: &'a Criteria,
+    limits: Limits,
+) -> Result<Complex<'a>> {
     let mut run = Run {
         limits,
         inserted: 0,
@@ -114,7 +124,7 @@ pub fn refine(domain: &dyn Domain, criteria: &Criteria, limits: Limits) -> Resul
         }
         break;
     }
-    Ok(output::mesh(&c))
+    Ok(c)
 }
 
 struct Run<'a> {

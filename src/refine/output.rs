@@ -5,7 +5,40 @@ use super::complex::Complex;
 use crate::mesh::Mesh;
 use crate::triangulation::tets::FACE;
 
-pub fn mesh(c: &Complex) -> Mesh {
+impl Complex<'_> {
+    /// The mesh of the complex (see the module documentation).
+    pub fn to_mesh(&self) -> Mesh {
+        mesh(self)
+    }
+
+    /// How far the output boundary (the facets between different labels) is from the
+    /// restricted facets: (label changes that are not restricted, restricted facets that
+    /// are not label changes). Both are 0 when the restricted Delaunay triangulation is the
+    /// boundary of the cells in the complex, which refinement reaches in practice.
+    pub fn boundary_disagreement(&self) -> (usize, usize) {
+        let tets = self.tri.tets();
+        let (mut unrestricted, mut same_label) = (0, 0);
+        for t in tets.live() {
+            for i in 0..4 {
+                let u = tets.neighbor(t, i);
+                let (a, b) = (self.label(t), self.label(u));
+                let restricted = self.ball(4 * t + i as u32).is_some();
+                // Each facet counted once: from its side with the larger slot.
+                if t < u {
+                    continue;
+                }
+                if a != b && !restricted {
+                    unrestricted += 1;
+                } else if a == b && restricted {
+                    same_label += 1;
+                }
+            }
+        }
+        (unrestricted, same_label)
+    }
+}
+
+fn mesh(c: &Complex) -> Mesh {
     let tets = c.tri.tets();
     let cells: Vec<u32> = tets.live().filter(|&t| c.label(t) > 0).collect();
     let mut number = vec![u32::MAX; c.vertex_count()];
