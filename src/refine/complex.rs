@@ -104,6 +104,17 @@ impl<'a> Complex<'a> {
         &self.center[t as usize]
     }
 
+    /// The insertion that created tetrahedron `t` (slots are reused: a slot with another
+    /// stamp holds another tetrahedron).
+    pub fn stamp(&self, t: u32) -> u32 {
+        self.stamp[t as usize]
+    }
+
+    /// Whether slot `t` still holds the live tetrahedron created at `stamp`.
+    pub fn is_current(&self, t: u32, stamp: u32) -> bool {
+        self.tri.tets().is_live(t) && self.stamp[t as usize] == stamp
+    }
+
     pub fn dimension(&self, v: u32) -> i8 {
         self.dimension[v as usize]
     }

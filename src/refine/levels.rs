@@ -76,26 +76,18 @@ impl FacetLevel {
         criteria.facet(p, &ball.center, ball.radius2, ball.labels, on_surface)
     }
 
-    fn element(c: &Complex, facet: u32, badness: Badness, forced: bool) -> Element {
-        Element {
-            handle: facet,
-            vertices: c.tri.tets().vertices(facet >> 2),
-            badness,
-            forced,
-        }
+    fn element(c: &Complex, facet: u32, badness: Badness) -> Element {
+        Element::new(facet, c.stamp(facet >> 2), badness)
     }
 }
 
 impl Level for FacetLevel {
     fn next(&mut self, c: &Complex, criteria: &Criteria) -> Result<Option<Element>> {
         while let Some(e) = self.queue.pop() {
-            let t = e.handle >> 2;
-            let tets = c.tri.tets();
-            let live = tets.is_live(t) && tets.vertices(t) == e.vertices;
-            if !live || c.ball(e.handle).is_none() {
+            if !c.is_current(e.handle >> 2, e.stamp) || c.ball(e.handle).is_none() {
                 continue;
             }
-            if e.forced || Self::badness(c, criteria, e.handle)?.is_some() {
+            if e.class() == ENCROACHED.class || Self::badness(c, criteria, e.handle)?.is_some() {
                 return Ok(Some(e));
             }
         }
@@ -118,7 +110,7 @@ impl Level for FacetLevel {
                 let facet = 4 * t + i;
                 if let Some(ball) = c.ball(facet) {
                     if dist2(p, &ball.center) < ball.radius2 {
-                        self.queue.push(Self::element(c, facet, ENCROACHED, true));
+                        self.queue.push(Self::element(c, facet, ENCROACHED));
                         verdict = Verdict::Rejected;
                     }
                 }
@@ -130,7 +122,7 @@ impl Level for FacetLevel {
     fn after_insertion(&mut self, c: &Complex, criteria: &Criteria) -> Result<()> {
         for &facet in c.fresh_facets() {
             if let Some(badness) = Self::badness(c, criteria, facet)? {
-                self.queue.push(Self::element(c, facet, badness, false));
+                self.queue.push(Self::element(c, facet, badness));
             }
         }
         Ok(())
@@ -162,9 +154,8 @@ impl CellLevel {
 
 impl Level for CellLevel {
     fn next(&mut self, c: &Complex, _: &Criteria) -> Result<Option<Element>> {
-        let tets = c.tri.tets();
         while let Some(e) = self.queue.pop() {
-            if tets.is_live(e.handle) && tets.vertices(e.handle) == e.vertices {
+            if c.is_current(e.handle, e.stamp) {
                 return Ok(Some(e));
             }
         }
@@ -186,12 +177,7 @@ impl Level for CellLevel {
     fn after_insertion(&mut self, c: &Complex, criteria: &Criteria) -> Result<()> {
         for &t in c.created() {
             if let Some(badness) = Self::badness(c, criteria, t)? {
-                self.queue.push(Element {
-                    handle: t,
-                    vertices: c.tri.tets().vertices(t),
-                    badness,
-                    forced: false,
-                });
+                self.queue.push(Element::new(t, c.stamp(t), badness));
             }
         }
         Ok(())
