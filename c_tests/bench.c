@@ -12,22 +12,16 @@
  * included for all three, destruction excluded for all three. Reported: medians of the
  * repetitions, points per second, and the ratios reference / delmesh (> 1: delmesh is faster,
  * smaller). */
-#define _DEFAULT_SOURCE /* wait4, fork, execv, clock_gettime */
 
+#include "bench_util.h"
 #include "points.h"
 #include "ref.h"
 
 #include <delmesh.h>
 
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/resource.h>
-#include <sys/types.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
 
 #define REPETITIONS 3
 #define MAX_SIZES 8
@@ -37,12 +31,6 @@ enum { DELMESH, CGAL, TETGEN, TOOLS };
 static const char *const tool_names[TOOLS] = {"delmesh", "cgal", "tetgen"};
 enum { CUBE, SHELL, DISTRIBUTIONS };
 static const char *const distribution_names[DISTRIBUTIONS] = {"cube", "shell"};
-
-static double seconds_now(void) {
-  struct timespec t;
-  clock_gettime(CLOCK_MONOTONIC, &t);
-  return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
 
 static int lookup(const char *name, const char *const *names, int count) {
   for (int i = 0; i < count; i++)
@@ -64,11 +52,11 @@ static int child(int tool, int distribution, size_t n) {
   size_t count = 0;
   if (tool == DELMESH) {
     DelmeshMesh *mesh = NULL;
-    double t0 = seconds_now();
+    double t0 = bench_seconds_now();
     DelmeshStatus s = delmesh_delaunay_tetrahedralize(xyz, n, &mesh);
     const uint32_t *tets = s == DELMESH_OK ? delmesh_mesh_tetrahedra(mesh) : NULL;
     count = s == DELMESH_OK ? delmesh_mesh_tetrahedron_count(mesh) : 0;
-    seconds = seconds_now() - t0;
+    seconds = bench_seconds_now() - t0;
     if (s != DELMESH_OK || !tets) {
       fprintf(stderr, "bench: delmesh failed (status %d): %s\n", (int)s, delmesh_last_error_message());
       return 1;
@@ -92,68 +80,6 @@ static int child(int tool, int distribution, size_t n) {
 }
 
 /* ---- parent: the table ---------------------------------------------------------------------- */
-
-typedef struct Run {
-  double seconds;
-  double peak_mb;
-  size_t tetrahedra;
-  int ok;
-} Run;
-
-/* Runs one child: fork, exec this program with the mode arguments, read its line, wait4. */
-static Run spawn(const char *self, int tool, int distribution, size_t n) {
-  Run r = {0, 0, 0, 0};
-  int pipefd[2];
-  if (pipe(pipefd) != 0) return r;
-  char size_arg[32];
-  snprintf(size_arg, sizeof size_arg, "%zu", n);
-  fflush(stdout);
-  pid_t pid = fork();
-  if (pid < 0) {
-    close(pipefd[0]);
-    close(pipefd[1]);
-    return r;
-  }
-  if (pid == 0) {
-    close(pipefd[0]);
-    dup2(pipefd[1], STDOUT_FILENO);
-    close(pipefd[1]);
-    char *args[] = {(char *)self, (char *)"--child", (char *)tool_names[tool],
-                    (char *)distribution_names[distribution], size_arg, NULL};
-    execv("/proc/self/exe", args);
-    _exit(127);
-  }
-  close(pipefd[1]);
-  char line[128] = "";
-  FILE *in = fdopen(pipefd[0], "r");
-  if (in) {
-    if (!fgets(line, sizeof line, in)) line[0] = '\0';
-    fclose(in);
-  } else {
-    close(pipefd[0]);
-  }
-  int status = 0;
-  struct rusage usage;
-  memset(&usage, 0, sizeof usage);
-  while (wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 &&
-      sscanf(line, "%lf %zu", &r.seconds, &r.tetrahedra) == 2) {
-    r.ok = 1;
-    r.peak_mb = (double)usage.ru_maxrss / 1024.0; /* ru_maxrss is in KiB on Linux */
-  }
-  return r;
-}
-
-static double median(double *v, int count) {
-  for (int i = 1; i < count; i++) /* insertion sort, count is tiny */
-    for (int j = i; j > 0 && v[j - 1] > v[j]; j--) {
-      double t = v[j];
-      v[j] = v[j - 1];
-      v[j - 1] = t;
-    }
-  return count % 2 ? v[count / 2] : 0.5 * (v[count / 2 - 1] + v[count / 2]);
-}
 
 static size_t parse_sizes(size_t *sizes) {
   const char *env = getenv("BENCH_SIZES");
@@ -219,7 +145,11 @@ int main(int argc, char **argv) {
       for (int rep = 0; rep < REPETITIONS; rep++)
         for (int k = 0; k < TOOLS; k++) {
           int tool = (k + rep) % TOOLS; /* rotate who goes first */
-          Run r = spawn(argv[0], tool, d, sizes[s]);
+          char size_arg[32];
+          snprintf(size_arg, sizeof size_arg, "%zu", sizes[s]);
+          char *args[] = {argv[0], (char *)"--child", (char *)tool_names[tool],
+                          (char *)distribution_names[d], size_arg, NULL};
+          BenchRun r = bench_spawn(args);
           printf("  run %zu %-5s rep %d %-7s: ", sizes[s], distribution_names[d], rep + 1, tool_names[tool]);
           if (!r.ok) {
             printf("FAILED\n");
@@ -227,15 +157,15 @@ int main(int argc, char **argv) {
             failures++;
             continue;
           }
-          printf("%8.3f s %8.1f MB %10zu tetrahedra\n", r.seconds, r.peak_mb, r.tetrahedra);
+          printf("%8.3f s %8.1f MB %10zu tetrahedra\n", r.seconds, r.peak_mb, r.count);
           times[tool][rep] = r.seconds;
           mems[tool][rep] = r.peak_mb;
-          row->tetrahedra[tool] = r.tetrahedra;
+          row->tetrahedra[tool] = r.count;
         }
       if (!row->ok) continue;
       for (int tool = 0; tool < TOOLS; tool++) {
-        row->seconds[tool] = median(times[tool], REPETITIONS);
-        row->peak_mb[tool] = median(mems[tool], REPETITIONS);
+        row->seconds[tool] = bench_median(times[tool], REPETITIONS);
+        row->peak_mb[tool] = bench_median(mems[tool], REPETITIONS);
       }
     }
 
