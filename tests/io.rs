@@ -1,12 +1,15 @@
 //! The writers, checked by reading their files back with an independent reader: meshio
-//! (Debian's python3-meshio). Without python3 and meshio the read-back tests say so and
-//! skip.
+//! (Debian's python3-meshio), on hand-made meshes and on a mesh of an oracle domain. Without
+//! python3 and meshio the read-back tests say so and skip.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+use delmesh::criteria::Criteria;
+use delmesh::domain::{BBox, FunctionDomain, Oracle};
 use delmesh::io::{write, Format};
+use delmesh::refine::{refine, Limits};
 use delmesh::{ErrorKind, Mesh};
 
 /// Prints what meshio read, one `= key: values...` line per cell block or data array
@@ -21,6 +24,8 @@ for k, arrays in m.cell_data.items():
     print(f"= cell_data {k}:", *[x for a in arrays for x in a.ravel().tolist()])
 for k, a in m.point_data.items():
     print(f"= point_data {k}:", *a.ravel().tolist())
+for k, a in m.field_data.items():
+    print(f"= field_data {k}:", *a.ravel().tolist())
 "#;
 
 /// A python3 that can import meshio: the one on PATH, else the system's.
@@ -223,4 +228,159 @@ fn unknown_extensions_and_unwritable_paths_are_reported() {
         "{}",
         error.message
     );
+}
+
+/// A refined mesh of two nested spheres given by a labeling function: label 1 inside
+/// radius 0.5, 2 in the shell out to radius 1, 0 outside.
+fn nested_spheres() -> Mesh {
+    let label = |p: &[f64; 3]| match p[0] * p[0] + p[1] * p[1] + p[2] * p[2] {
+        r2 if r2 < 0.25 => 1,
+        r2 if r2 < 1.0 => 2,
+        _ => 0,
+    };
+    let bbox = BBox::from_array(&[-1.5, -1.5, -1.5, 1.5, 1.5, 1.5]).unwrap();
+    let domain = FunctionDomain::new(Oracle::Labels(Box::new(label)), bbox, 1e-6).unwrap();
+    let mut criteria = Criteria::new();
+    criteria.set_facet_angle(30.0).unwrap();
+    criteria.set_facet_size(0.15).unwrap();
+    criteria.set_facet_distance(0.03).unwrap();
+    criteria.set_cell_radius_edge_ratio(2.0).unwrap();
+    criteria.set_cell_size(0.15).unwrap();
+    let mesh = refine(&domain, &criteria, Limits::default()).unwrap();
+    mesh.validate().unwrap();
+    mesh
+}
+
+/// How many times each value occurs.
+fn multiset(values: &[f64]) -> BTreeMap<i64, usize> {
+    let mut counts = BTreeMap::new();
+    for &v in values {
+        assert_eq!(v, v.trunc(), "not an integer: {v}");
+        *counts.entry(v as i64).or_default() += 1;
+    }
+    counts
+}
+
+/// The elements (`per` indices each) reordered by increasing key, stably: the order of the
+/// Gmsh blocks. Returns the indices and the matching keys.
+fn grouped_by(elements: &[u32], per: usize, keys: &[i32]) -> (Vec<f64>, Vec<f64>) {
+    let mut order: Vec<usize> = (0..keys.len()).collect();
+    order.sort_by_key(|&e| keys[e]);
+    let indices = order
+        .iter()
+        .flat_map(|&e| as_f64(&elements[per * e..per * (e + 1)]))
+        .collect();
+    (indices, order.iter().map(|&e| keys[e].into()).collect())
+}
+
+#[test]
+fn a_mesh_of_two_labels_reads_back_in_every_format() {
+    let mesh = nested_spheres();
+    let (tet_count, facet_count) = (mesh.tetrahedron_count(), mesh.facets.len() / 3);
+    let labels = as_f64(&mesh.tetrahedron_labels);
+    let label_counts = multiset(&labels);
+    assert_eq!(
+        label_counts.keys().copied().collect::<Vec<_>>(),
+        vec![1, 2],
+        "subdomains"
+    );
+
+    // Patches, numbered here independently of src/io: the distinct (from, to) pairs in
+    // increasing order, from 1. The facets lie on the outer sphere (between 2 and 0) and on
+    // the interface (between 1 and 2), each pair in some orientation.
+    let pairs: Vec<[i32; 2]> = mesh
+        .facet_labels
+        .chunks_exact(2)
+        .map(|p| [p[0], p[1]])
+        .collect();
+    let mut distinct = pairs.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    let mut unordered: Vec<[i32; 2]> = distinct
+        .iter()
+        .map(|&[a, b]| [a.min(b), a.max(b)])
+        .collect();
+    unordered.sort_unstable();
+    unordered.dedup();
+    assert_eq!(
+        unordered,
+        vec![[0, 2], [1, 2]],
+        "facet label pairs {distinct:?}"
+    );
+    let patch_of: Vec<i32> = pairs
+        .iter()
+        .map(|p| 1 + distinct.iter().position(|d| d == p).unwrap() as i32)
+        .collect();
+    let patch_counts = multiset(&as_f64(&patch_of));
+    eprintln!(
+        "{} vertices, {tet_count} tetrahedra {label_counts:?}, {facet_count} facets in patches \
+         {distinct:?} {patch_counts:?}",
+        mesh.vertex_count()
+    );
+
+    // Medit: every array in order; references = labels, then patch numbers.
+    let Some(read) = round_trip(&mesh, "spheres.mesh") else {
+        return;
+    };
+    assert_eq!(read["points"].len(), 3 * mesh.vertex_count());
+    assert_eq!(read["points"], mesh.vertices);
+    assert_eq!(read["cells tetra"].len(), 4 * tet_count);
+    assert_eq!(read["cells tetra"], as_f64(&mesh.tetrahedra));
+    assert_eq!(read["cells triangle"].len(), 3 * facet_count);
+    assert_eq!(read["cells triangle"], as_f64(&mesh.facets));
+    let refs = &read["cell_data medit:ref"];
+    assert_eq!(refs.len(), tet_count + facet_count);
+    assert_eq!(refs[..tet_count], labels[..]);
+    assert_eq!(multiset(&refs[..tet_count]), label_counts);
+    assert_eq!(refs[tet_count..], as_f64(&patch_of)[..]);
+    assert_eq!(multiset(&refs[tet_count..]), patch_counts);
+    assert!(!read.contains_key("cells line"));
+
+    // Gmsh: one block per patch, then one per subdomain, each in increasing order; the
+    // physical names give each patch its (from, to) pair.
+    let Some(read) = round_trip(&mesh, "spheres.msh") else {
+        return;
+    };
+    assert_eq!(read["points"], mesh.vertices);
+    let (tets, tet_physical) = grouped_by(&mesh.tetrahedra, 4, &mesh.tetrahedron_labels);
+    let (facets, facet_physical) = grouped_by(&mesh.facets, 3, &patch_of);
+    assert_eq!(read["cells tetra"].len(), 4 * tet_count);
+    assert_eq!(read["cells tetra"], tets);
+    assert_eq!(read["cells triangle"].len(), 3 * facet_count);
+    assert_eq!(read["cells triangle"], facets);
+    let physical = &read["cell_data gmsh:physical"];
+    assert_eq!(physical.len(), facet_count + tet_count);
+    assert_eq!(physical[..facet_count], facet_physical[..]);
+    assert_eq!(multiset(&physical[..facet_count]), patch_counts);
+    assert_eq!(physical[facet_count..], tet_physical[..]);
+    assert_eq!(multiset(&physical[facet_count..]), label_counts);
+    for (k, [from, to]) in distinct.iter().enumerate() {
+        let name = format!("field_data facets {from} {to}");
+        assert_eq!(read.get(&name), Some(&vec![k as f64 + 1.0, 2.0]), "{name}");
+    }
+    for label in [1, 2] {
+        let name = format!("field_data subdomain {label}");
+        assert_eq!(read.get(&name), Some(&vec![label as f64, 3.0]), "{name}");
+    }
+
+    // VTU: the tetrahedra with their labels, the vertex dimensions; no facets.
+    let Some(read) = round_trip(&mesh, "spheres.vtu") else {
+        return;
+    };
+    assert_eq!(read["points"], mesh.vertices);
+    assert_eq!(read["cells tetra"], as_f64(&mesh.tetrahedra));
+    assert!(!read.contains_key("cells triangle"));
+    assert_eq!(read["cell_data label"], labels);
+    assert_eq!(multiset(&read["cell_data label"]), label_counts);
+    let dimensions = &read["point_data dimension"];
+    assert_eq!(*dimensions, as_f64(&mesh.vertex_dimensions));
+    // Surface vertices are exactly the vertices of the facets; all others are volume ones.
+    let mut on_facets: Vec<u32> = mesh.facets.clone();
+    on_facets.sort_unstable();
+    on_facets.dedup();
+    let mut expected = vec![3.0; mesh.vertex_count()];
+    for &v in &on_facets {
+        expected[v as usize] = 2.0;
+    }
+    assert_eq!(*dimensions, expected);
 }
