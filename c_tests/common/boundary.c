@@ -6,19 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
-
 static const double *point(const double *xyz, uint32_t i) { return xyz + 3 * (size_t)i; }
 
 static void sub3(const double a[3], const double b[3], double out[3]) {
   for (int k = 0; k < 3; k++) out[k] = a[k] - b[k];
 }
 static double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-static void cross3(const double a[3], const double b[3], double out[3]) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
 
 /* ---- Faces --------------------------------------------------------------------------------------- */
 
@@ -472,44 +465,4 @@ int boundary_hausdorff(const double *xyz, const BoundaryFace *faces, size_t coun
   out->surface_to_mesh_rms = sample_count ? sqrt(sum2 / (double)sample_count) : 0.0;
   out->max = fmax(out->mesh_to_surface_max, out->surface_to_mesh_max);
   return ok;
-}
-
-/* ---- Quality ----------------------------------------------------------------------------------------- */
-
-double boundary_max_radius_edge(const double *xyz, const uint32_t *tets, size_t tet_count) {
-  double worst = 0.0;
-  for (size_t t = 0; t < tet_count; t++) {
-    const double *p[4];
-    for (int k = 0; k < 4; k++) p[k] = point(xyz, tets[4 * t + k]);
-    double u[3], v[3], w[3], vw[3], wu[3], uv[3];
-    sub3(p[1], p[0], u), sub3(p[2], p[0], v), sub3(p[3], p[0], w);
-    cross3(v, w, vw), cross3(w, u, wu), cross3(u, v, uv);
-    double det = 2.0 * dot3(u, vw), uu = dot3(u, u), vv = dot3(v, v), ww = dot3(w, w), center[3];
-    for (int k = 0; k < 3; k++) center[k] = (uu * vw[k] + vv * wu[k] + ww * uv[k]) / det;
-    double shortest2 = INFINITY;
-    for (int i = 0; i < 4; i++)
-      for (int j = i + 1; j < 4; j++) {
-        double e[3];
-        sub3(p[j], p[i], e);
-        shortest2 = fmin(shortest2, dot3(e, e));
-      }
-    double ratio = sqrt(dot3(center, center) / shortest2);
-    if (!(ratio <= worst)) worst = ratio; /* NaN (flat tetrahedron) propagates */
-  }
-  return worst;
-}
-
-double boundary_min_face_angle(const double *xyz, const BoundaryFace *faces, size_t count) {
-  double smallest = 180.0;
-  for (size_t i = 0; i < count; i++)
-    for (int k = 0; k < 3; k++) {
-      double u[3], v[3], c[3];
-      const double *a = point(xyz, faces[i].v[k]);
-      sub3(point(xyz, faces[i].v[(k + 1) % 3]), a, u);
-      sub3(point(xyz, faces[i].v[(k + 2) % 3]), a, v);
-      cross3(u, v, c);
-      double angle = atan2(sqrt(dot3(c, c)), dot3(u, v)) * 180.0 / PI;
-      if (angle < smallest) smallest = angle;
-    }
-  return smallest;
 }

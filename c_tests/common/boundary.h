@@ -88,10 +88,4 @@ int boundary_hausdorff(const double *xyz, const BoundaryFace *faces, size_t coun
                        double (*distance)(const double p[3]), const double *samples,
                        size_t sample_count, Hausdorff *out);
 
-/* Largest circumradius / shortest edge over the tetrahedra (in double). */
-double boundary_max_radius_edge(const double *xyz, const uint32_t *tets, size_t tet_count);
-
-/* Smallest angle (degrees) of the faces. */
-double boundary_min_face_angle(const double *xyz, const BoundaryFace *faces, size_t count);
-
 #endif
