@@ -35,6 +35,18 @@
 #include <string.h>
 #include <time.h>
 
+/* Writes the mesh (the extension of `path` chooses the format); 1 on success. */
+static int write_mesh(const DelmeshMesh *mesh, const char *path) {
+  DelmeshStatus status = delmesh_mesh_write(mesh, path);
+  if (status != DELMESH_OK) {
+    fprintf(stderr, "demo: delmesh_mesh_write(%s) failed (status %d): %s\n", path, (int)status,
+            delmesh_last_error_message());
+    return 0;
+  }
+  printf("written:     %s\n", path);
+  return 1;
+}
+
 static double seconds_now(void) {
   struct timespec t;
   clock_gettime(CLOCK_MONOTONIC, &t);
@@ -369,14 +381,7 @@ static int run_oracle(const DemoShape *shape, const char *out_path) {
          shape->cell_size, yes_no(size_ok), facet_angle, shape->facet_angle, yes_no(angle_ok));
   failed |= !radius_edge_ok || !size_ok || !angle_ok;
 
-  status = delmesh_mesh_write(mesh, out_path);
-  if (status == DELMESH_OK) {
-    printf("written:     %s\n", out_path);
-  } else {
-    fprintf(stderr, "demo: delmesh_mesh_write(%s) failed (status %d): %s\n", out_path, (int)status,
-            delmesh_last_error_message());
-    failed = 1;
-  }
+  failed |= !write_mesh(mesh, out_path);
   free(outward);
   delmesh_mesh_free(mesh);
   return failed;
@@ -475,14 +480,7 @@ static int run_delaunay(const char *off, const char *out_path) {
   printf("volume:      %.15g (convex hull %.15g, relative error %.2g)\n", volume, hull_volume, error);
   failed |= !(error <= 1e-12);
 
-  status = delmesh_mesh_write(mesh, out_path);
-  if (status == DELMESH_OK) {
-    printf("written:     %s\n", out_path);
-  } else {
-    fprintf(stderr, "demo: delmesh_mesh_write(%s) failed (status %d): %s\n", out_path, (int)status,
-            delmesh_last_error_message());
-    failed = 1;
-  }
+  failed |= !write_mesh(mesh, out_path);
 
   delmesh_mesh_free(mesh);
   free(hull);

@@ -186,16 +186,21 @@ fn relative(v: f64, exact: f64) -> f64 {
     (v - exact).abs() / exact
 }
 
-#[test]
-fn unit_sphere_is_one_closed_ball_of_the_right_volume() {
-    let d = sphere(1.0);
-    let cr = criteria(0.05);
-    let mut c = refine_complex(&d, &cr, Limits::default()).unwrap();
+/// Refines, validates the restricted Delaunay triangulation (and that its restricted facets
+/// are the output boundary), then the mesh and its facets.
+fn checked_mesh(d: &FunctionDomain, cr: &Criteria) -> Mesh {
+    let mut c = refine_complex(d, cr, Limits::default()).unwrap();
     c.validate().unwrap();
     assert_eq!(c.boundary_disagreement(), (0, 0));
     let m = c.to_mesh();
     m.validate().unwrap();
     check_facets(&m);
+    m
+}
+
+#[test]
+fn unit_sphere_is_one_closed_ball_of_the_right_volume() {
+    let m = checked_mesh(&sphere(1.0), &criteria(0.05));
     assert_eq!(euler_per_component(&m, (1, 0)), vec![2]);
     let smallest = m
         .facets
@@ -295,14 +300,7 @@ fn torus_has_genus_one() {
 
 #[test]
 fn nested_spheres_give_two_subdomains_and_an_interface() {
-    let d = nested_spheres();
-    let cr = criteria(0.08);
-    let mut c = refine_complex(&d, &cr, Limits::default()).unwrap();
-    c.validate().unwrap();
-    assert_eq!(c.boundary_disagreement(), (0, 0));
-    let m = c.to_mesh();
-    m.validate().unwrap();
-    check_facets(&m);
+    let m = checked_mesh(&nested_spheres(), &criteria(0.08));
     assert_eq!(euler_per_component(&m, (2, 0)), vec![2]);
     assert_eq!(euler_per_component(&m, (2, 1)), vec![2]);
     let v = volumes(&m);
