@@ -372,6 +372,22 @@ static int run_oracle(const DemoShape *shape, const char *out_path) {
            worst.min_dihedral, worst.max_dihedral, worst.radius_edge, worst.radius_ratio,
            dimensions[w[0]], dimensions[w[1]], dimensions[w[2]], dimensions[w[3]]);
   }
+  /* The library's own report (delmesh_mesh_quality) must agree with this independent one. */
+  DelmeshQuality lib;
+  int lib_ok = delmesh_mesh_quality(mesh, &lib) == DELMESH_OK;
+  int agree = lib_ok && lib.tetrahedra == tet_count &&
+              fabs(lib.min_dihedral_angle - q.min_dihedral) <= 1e-9 * 180 &&
+              fabs(lib.max_dihedral_angle - q.max_dihedral) <= 1e-9 * 180 &&
+              lib.dihedral_below[0] == q.dihedral_below[0] && lib.dihedral_below[1] == q.dihedral_below[1] &&
+              lib.dihedral_below[2] == q.dihedral_below[2] &&
+              fabs(lib.min_facet_angle - facet_angle) <= 1e-9 * 180;
+  if (lib_ok)
+    printf("             delmesh_mesh_quality: dihedral %.2f..%.2f, radius-edge <= %.4f, radius ratio >= "
+           "%.4f, below 5/10/15 deg: %zu/%zu/%zu, facet angle >= %.2f: %s\n",
+           lib.min_dihedral_angle, lib.max_dihedral_angle, lib.max_radius_edge_ratio, lib.min_radius_ratio,
+           lib.dihedral_below[0], lib.dihedral_below[1], lib.dihedral_below[2], lib.min_facet_angle,
+           agree ? "agrees" : "DISAGREES with the figures above");
+  failed |= !agree;
   int radius_edge_ok = q.max_radius_edge <= shape->radius_edge * (1 + ROUNDING);
   int size_ok = q.max_circumradius <= shape->cell_size * (1 + ROUNDING);
   int angle_ok = facet_angle >= shape->facet_angle * (1 - ROUNDING);

@@ -206,6 +206,13 @@ static void run_successes(void) {
     int same_field = nv == delmesh_mesh_vertex_count(c) && nt == delmesh_mesh_tetrahedron_count(c) &&
                      memcmp(delmesh_mesh_vertices(a), delmesh_mesh_vertices(c), 3 * nv * sizeof(double)) == 0;
     check_case(same_field && calls > 0, "a constant sizing field (%ld calls) gives the constant's mesh", calls);
+    DelmeshQuality q;
+    int quality_ok = delmesh_mesh_quality(a, &q) == DELMESH_OK && q.tetrahedra == nt && q.min_dihedral_angle > 0 &&
+                     q.max_dihedral_angle < 180 && q.min_facet_angle >= 25 * (1 - 1e-9);
+    check_case(quality_ok, "delmesh_mesh_quality: %zu tetrahedra, dihedral %.2f..%.2f, facet angle >= %.2f", q.tetrahedra,
+               q.min_dihedral_angle, q.max_dihedral_angle, q.min_facet_angle);
+    expect(delmesh_mesh_quality(NULL, &q), DELMESH_ERROR_NULL_ARGUMENT, "quality of a NULL mesh", "`m`");
+    expect(delmesh_mesh_quality(a, NULL), DELMESH_ERROR_NULL_ARGUMENT, "quality into NULL", "out");
   }
   delmesh_mesh_free(a);
   delmesh_mesh_free(b);

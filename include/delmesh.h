@@ -65,6 +65,11 @@
 #define DELMESH_PHASE_VOLUME 2
 
 /*
+ Bins of `DelmeshQuality::radius_ratio_histogram`.
+ */
+#define DELMESH_QUALITY_HISTOGRAM_BINS 10
+
+/*
  `delmesh_mesher_set_sizing_field`: the field replaces the cell size bound.
  */
 #define DELMESH_SIZING_CELL_SIZE 3
@@ -167,6 +172,36 @@ typedef double (*DelmeshImplicitFn)(const double *p, void *user_data);
  reports a failure: the run stops with `DELMESH_ERROR_CALLBACK`.
  */
 typedef int32_t (*DelmeshLabelFn)(const double *p, void *user_data);
+
+/*
+ Quality figures of a mesh (definitions of the project's METRICS.md "Quality"); angles in
+ degrees. Extremes are NaN when the mesh has no tetrahedra (or no facets).
+ */
+typedef struct DelmeshQuality {
+    size_t tetrahedra;
+    double min_dihedral_angle;
+    double max_dihedral_angle;
+    /*
+     Largest circumradius / shortest edge.
+     */
+    double max_radius_edge_ratio;
+    /*
+     Smallest 3 * inradius / circumradius (1 for the regular tetrahedron).
+     */
+    double min_radius_ratio;
+    /*
+     Tetrahedra with a dihedral angle below 5, 10 and 15 degrees.
+     */
+    size_t dihedral_below[3];
+    /*
+     Bin k counts the radius ratios in [k/10, (k+1)/10); the last bin includes 1.
+     */
+    size_t radius_ratio_histogram[DELMESH_QUALITY_HISTOGRAM_BINS];
+    /*
+     Smallest angle of the boundary and interface facets.
+     */
+    double min_facet_angle;
+} DelmeshQuality;
 
 /*
  A progress report, passed to the progress callback.
@@ -383,6 +418,16 @@ const uint32_t *delmesh_mesh_facets(const struct DelmeshMesh *m);
  used afterwards.
  */
 void delmesh_mesh_free(struct DelmeshMesh *m);
+
+/*
+ Computes the quality report of `m` into `*out`.
+
+ Errors: NULL `m` or `out` -> `DELMESH_ERROR_NULL_ARGUMENT` (`*out` untouched).
+
+ # Safety
+ `m` is NULL or a live mesh; `out` is NULL or writable.
+ */
+enum DelmeshStatus delmesh_mesh_quality(const struct DelmeshMesh *m, struct DelmeshQuality *out);
 
 /*
  Tetrahedra, 4 vertex indices each (4 * tetrahedron_count), positively oriented:

@@ -8,7 +8,8 @@
 //! - [`domain`]: the geometry as an oracle (implicit and labeling functions);
 //! - [`criteria`]: facet and cell bounds, constant or sizing fields;
 //! - [`refine`]: oracle-driven Delaunay refinement (restricted Delaunay, refinement levels);
-//! - [`mesh`]: the result type handed to users;
+//! - [`mesh2d`]: planar Delaunay and conforming (Pébay) triangulations;
+//! - [`mesh`]: the result type handed to users, and its [`quality`] report;
 //! - `ffi`: the C ABI, a panic boundary around every exported function.
 
 pub mod criteria;
@@ -17,7 +18,9 @@ pub mod error;
 pub mod ffi;
 pub mod io;
 pub mod mesh;
+pub mod mesh2d;
 pub mod predicates;
+pub mod quality;
 pub mod refine;
 pub mod triangulation;
 

@@ -24,6 +24,11 @@ impl DelmeshMesh {
     pub fn into_raw(mesh: Mesh) -> *mut DelmeshMesh {
         Box::into_raw(Box::new(DelmeshMesh { mesh }))
     }
+
+    /// The mesh behind the handle.
+    pub fn mesh(&self) -> &Mesh {
+        &self.mesh
+    }
 }
 
 /// `f` of the mesh behind `m`, or 0 for a NULL handle.

@@ -23,6 +23,7 @@
 pub mod domain;
 pub mod mesh;
 pub mod mesher;
+pub mod quality;
 pub mod status;
 pub mod triangulate;
 pub mod version;

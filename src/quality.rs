@@ -1,0 +1,169 @@
+//! Quality figures of a mesh, as METRICS.md "Quality" defines them (the ones the C tests, the
+//! demo and `delmesh_mesh_quality` report).
+//!
+//! Per tetrahedron: the six dihedral angles, the radius-edge ratio (circumradius / shortest
+//! edge) and the radius ratio `3 r_in / r_circ` (1 for the regular tetrahedron, 0 for a flat
+//! one). Per boundary facet: its smallest angle. Computed in floating point: these are
+//! measurements, not decisions.
+
+use crate::mesh::Mesh;
+
+type P = [f64; 3];
+
+/// Dihedral angle thresholds of [`Quality::dihedral_below`], in degrees.
+pub const DIHEDRAL_THRESHOLDS: [f64; 3] = [5.0, 10.0, 15.0];
+
+/// Bins of the radius-ratio histogram: bin `k` counts `[k/10, (k+1)/10)`, the last includes 1.
+pub const RADIUS_RATIO_BINS: usize = 10;
+
+/// The quality report of a mesh's tetrahedra and boundary facets.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Quality {
+    pub tetrahedra: usize,
+    /// Degrees; NaN without tetrahedra.
+    pub min_dihedral: f64,
+    pub max_dihedral: f64,
+    pub max_radius_edge: f64,
+    pub min_radius_ratio: f64,
+    /// Tetrahedra with a dihedral angle below each of [`DIHEDRAL_THRESHOLDS`].
+    pub dihedral_below: [usize; 3],
+    pub radius_ratio_histogram: [usize; RADIUS_RATIO_BINS],
+    /// Smallest angle of the boundary and interface facets, degrees; NaN without facets.
+    pub min_facet_angle: f64,
+}
+
+/// The figures of one tetrahedron.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TetQuality {
+    pub min_dihedral: f64,
+    pub max_dihedral: f64,
+    pub radius_edge: f64,
+    pub radius_ratio: f64,
+}
+
+impl Quality {
+    pub fn of(mesh: &Mesh) -> Quality {
+        let mut q = Quality {
+            tetrahedra: mesh.tetrahedron_count(),
+            min_dihedral: f64::NAN,
+            max_dihedral: f64::NAN,
+            max_radius_edge: f64::NAN,
+            min_radius_ratio: f64::NAN,
+            dihedral_below: [0; 3],
+            radius_ratio_histogram: [0; RADIUS_RATIO_BINS],
+            min_facet_angle: f64::NAN,
+        };
+        for t in mesh.tetrahedra.as_chunks::<4>().0 {
+            let tq = tetrahedron(t.map(|v| mesh.vertex(v)));
+            q.min_dihedral = q.min_dihedral.min(tq.min_dihedral);
+            q.max_dihedral = q.max_dihedral.max(tq.max_dihedral);
+            q.max_radius_edge = q.max_radius_edge.max(tq.radius_edge);
+            q.min_radius_ratio = q.min_radius_ratio.min(tq.radius_ratio);
+            for (k, &bound) in DIHEDRAL_THRESHOLDS.iter().enumerate() {
+                q.dihedral_below[k] += usize::from(tq.min_dihedral < bound);
+            }
+            let bin = (tq.radius_ratio * RADIUS_RATIO_BINS as f64) as usize;
+            q.radius_ratio_histogram[bin.min(RADIUS_RATIO_BINS - 1)] += 1;
+        }
+        for f in mesh.facets.as_chunks::<3>().0 {
+            q.min_facet_angle = q
+                .min_facet_angle
+                .min(triangle_min_angle(f.map(|v| mesh.vertex(v))));
+        }
+        q
+    }
+}
+
+/// Dihedral angles, radius-edge and radius ratios of the tetrahedron `p` (either orientation).
+pub fn tetrahedron(p: [P; 4]) -> TetQuality {
+    // Outward-or-inward normals of the four faces, each opposite vertex i, all the same way.
+    let normal = |i: usize| {
+        let [a, b, c] = [(i + 1) % 4, (i + 2) % 4, (i + 3) % 4].map(|k| p[k]);
+        cross(&sub(&b, &a), &sub(&c, &a))
+    };
+    let n: [P; 4] = std::array::from_fn(|i| {
+        let v = normal(i);
+        // Orient every normal away from the opposite vertex.
+        if dot(&v, &sub(&p[i], &p[(i + 1) % 4])) > 0.0 {
+            v.map(|x| -x)
+        } else {
+            v
+        }
+    });
+    let (mut min_dihedral, mut max_dihedral) = (180.0f64, 0.0f64);
+    for i in 0..4 {
+        for j in i + 1..4 {
+            // Faces i and j meet at the edge opposite them; the dihedral angle there is
+            // pi minus the angle between their outward normals.
+            let c = dot(&n[i], &n[j]) / (norm(&n[i]) * norm(&n[j]));
+            let angle = 180.0 - c.clamp(-1.0, 1.0).acos().to_degrees();
+            let angle = if angle.is_nan() { 0.0 } else { angle };
+            min_dihedral = min_dihedral.min(angle);
+            max_dihedral = max_dihedral.max(angle);
+        }
+    }
+    let volume = dot(
+        &sub(&p[1], &p[0]),
+        &cross(&sub(&p[2], &p[0]), &sub(&p[3], &p[0])),
+    )
+    .abs()
+        / 6.0;
+    let area: f64 = n.iter().map(|v| 0.5 * norm(v)).sum();
+    let circumradius = circumradius(&p);
+    let shortest = (0..4)
+        .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+        .map(|(i, j)| norm(&sub(&p[i], &p[j])))
+        .fold(f64::INFINITY, f64::min);
+    let inradius = 3.0 * volume / area;
+    let ratio = 3.0 * inradius / circumradius;
+    TetQuality {
+        min_dihedral,
+        max_dihedral,
+        radius_edge: circumradius / shortest,
+        radius_ratio: if ratio.is_finite() {
+            ratio.clamp(0.0, 1.0)
+        } else {
+            0.0
+        },
+    }
+}
+
+/// Smallest angle of a triangle, degrees.
+pub fn triangle_min_angle(p: [P; 3]) -> f64 {
+    (0..3)
+        .map(|k| {
+            let (u, v) = (sub(&p[(k + 1) % 3], &p[k]), sub(&p[(k + 2) % 3], &p[k]));
+            norm(&cross(&u, &v)).atan2(dot(&u, &v)).to_degrees()
+        })
+        .fold(180.0, f64::min)
+}
+
+fn circumradius(p: &[P; 4]) -> f64 {
+    let (u, v, w) = (sub(&p[1], &p[0]), sub(&p[2], &p[0]), sub(&p[3], &p[0]));
+    let (vw, wu, uv) = (cross(&v, &w), cross(&w, &u), cross(&u, &v));
+    let det2 = 2.0 * dot(&u, &vw);
+    let c: P = std::array::from_fn(|k| {
+        (dot(&u, &u) * vw[k] + dot(&v, &v) * wu[k] + dot(&w, &w) * uv[k]) / det2
+    });
+    norm(&c)
+}
+
+fn sub(a: &P, b: &P) -> P {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(u: &P, v: &P) -> P {
+    [
+        u[1] * v[2] - u[2] * v[1],
+        u[2] * v[0] - u[0] * v[2],
+        u[0] * v[1] - u[1] * v[0],
+    ]
+}
+
+fn dot(u: &P, v: &P) -> f64 {
+    u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
+}
+
+fn norm(u: &P) -> f64 {
+    dot(u, u).sqrt()
+}
