@@ -85,6 +85,27 @@
 #define DELMESH_SIZING_FACET_SIZE 1
 
 /*
+ What `delmesh_triangulate_2d` computes.
+ */
+typedef enum DelmeshMode2d {
+    /*
+     Delaunay triangulation of the points; segments ignored.
+     */
+    DELMESH_MODE2D_DELAUNAY = 0,
+    /*
+     Pébay: subdivide the segments a priori until every sub-segment is strongly
+     Delaunay-admissible; output = Delaunay triangulation of the convex hull of the
+     augmented point set.
+     */
+    DELMESH_MODE2D_CONFORMING = 1,
+    /*
+     Conforming + Ruppert/Shewchuk refinement inside the domain. Not yet supported:
+     `delmesh_triangulate_2d` returns DELMESH_ERROR_INVALID_ARGUMENT for it.
+     */
+    DELMESH_MODE2D_QUALITY = 2,
+} DelmeshMode2d;
+
+/*
  The outcome of a fallible call. Values are explicit and never reused: a new status
  is added at the end with a new number.
  */
@@ -232,6 +253,31 @@ typedef int32_t (*DelmeshProgressFn)(const struct DelmeshProgress *p, void *user
  run with `DELMESH_ERROR_CALLBACK`.
  */
 typedef double (*DelmeshSizingFn)(const double *p, int32_t dimension, int32_t index, void *user_data);
+
+/*
+ Options of `delmesh_triangulate_2d` (all In). Zero-initialize, then set `mode`.
+ */
+typedef struct DelmeshOptions2d {
+    enum DelmeshMode2d mode;
+    /*
+     Quality mode: lower bound on triangle angles, in degrees; 0 = no angle criterion.
+     */
+    double min_angle_degrees;
+    /*
+     Quality mode: upper bound on triangle areas; 0 = none.
+     */
+    double max_area;
+    /*
+     Quality mode: `n_holes` (x, y) seeds; the region containing each is removed.
+     */
+    const double *holes;
+    size_t n_holes;
+    /*
+     Quality mode: `n_regions` (x, y, label, max_area) seeds; max_area 0 = the global one.
+     */
+    const double *regions;
+    size_t n_regions;
+} DelmeshOptions2d;
 
 #ifdef __cplusplus
 extern "C" {
@@ -695,6 +741,51 @@ enum DelmeshStatus delmesh_regular_tetrahedralize(const double *xyz,
                                                   const double *weights,
                                                   size_t n,
                                                   struct DelmeshMesh **out);
+
+/*
+ Triangulates the `n_points` points `xy` (x y interleaved, 2 * n_points doubles) and the
+ `n_segments` constraint segments `segments` (2 * n_segments point indices; NULL allowed
+ when `n_segments` is 0), as `options->mode` says (NULL `options`: conforming mode).
+
+ - DELAUNAY: every triangle of the Delaunay triangulation of the points' convex hull;
+   segments are ignored. Cocircular points are resolved by a deterministic symbolic
+   perturbation.
+ - CONFORMING: Pébay's a-priori subdivision (INRIA RR-3492, Algorithm 3.2): points are
+   added on the segments until every sub-segment is strongly Delaunay-admissible (in every
+   Delaunay triangulation of the points, cocircular ones included); the triangles are the
+   Delaunay triangulation of the convex hull of all points. `delmesh_mesh_edges` lists the
+   sub-segments, input segment after input segment, each from its first point to its
+   second. The number of added points is `delmesh_mesh_vertex_count - n_points`.
+ - QUALITY: not yet supported (DELMESH_ERROR_INVALID_ARGUMENT).
+
+ Output: vertices with z = 0; vertex `i < n_points` is input point `i`, added points
+ follow. A point equal to an earlier one is merged onto it (`delmesh_mesh_duplicate_of`),
+ keeps its slot and is used by nothing; segments through it use the earlier point and a
+ repeated segment is listed once. Triangles are counter-clockwise, label 1. Vertex
+ dimensions: 0 at segment ends, 1 for added points, 2 for other points, -1 for merged
+ copies (and for every point in DELAUNAY mode). Deterministic.
+
+ On success `*out` receives a new mesh owned by the caller (free it with
+ `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xy`, `out` or
+ (with `n_segments > 0`) `segments` -> DELMESH_ERROR_NULL_ARGUMENT; an unknown mode, a
+ negative or non-finite option, or the QUALITY mode -> DELMESH_ERROR_INVALID_ARGUMENT; a
+ non-finite coordinate or one of magnitude above 1e60, all points collinear, a segment
+ index out of range, a zero-length segment, a point on a segment, or two crossing segments
+ -> DELMESH_ERROR_INVALID_INPUT, the message naming the culprits.
+
+ Thread-safe: calls on different threads run independently; the inputs are only read.
+
+ # Safety
+ `xy` is NULL or points to 2 * n_points readable doubles, `segments` to 2 * n_segments
+ `uint32_t`; `options` is NULL or points to a readable `DelmeshOptions2d`; `out` is NULL or
+ writable.
+ */
+enum DelmeshStatus delmesh_triangulate_2d(const double *xy,
+                                          size_t n_points,
+                                          const uint32_t *segments,
+                                          size_t n_segments,
+                                          const struct DelmeshOptions2d *options,
+                                          struct DelmeshMesh **out);
 
 /*
  The library version, "MAJOR.MINOR.PATCH" (NUL-terminated).

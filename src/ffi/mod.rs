@@ -26,6 +26,7 @@ pub mod mesher;
 pub mod quality;
 pub mod status;
 pub mod triangulate;
+pub mod triangulate2d;
 pub mod version;
 
 mod args;

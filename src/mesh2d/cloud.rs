@@ -1,0 +1,173 @@
+//! The growing point set `S` of the subdivision, with a bucket grid (Pébay §3.3: "un tri par
+//! boîtes") answering "which points lie in this disk" without scanning them all.
+//!
+//! Invariants: `points[i]` is stored in exactly one bucket, the one of its clamped cell (but
+//! the points added by [`Cloud::push_unindexed`], stored in none); the
+//! grid covers the bounding box of the input points (points added later lie on input segments,
+//! hence in that box up to rounding, and clamping keeps them findable: a query box is clamped
+//! the same way). Queries return candidates whose cells meet the box; exact predicates decide.
+
+use super::exact::{dot_sign, in_circumcircle};
+use crate::predicates::Sign;
+
+/// Points and their bucket grid.
+pub struct Cloud {
+    pub points: Vec<[f64; 2]>,
+    lo: [f64; 2],
+    /// Cells per unit length.
+    scale: f64,
+    nx: usize,
+    ny: usize,
+    buckets: Vec<Vec<u32>>,
+}
+
+impl Cloud {
+    /// A grid of about `cells` buckets over the box `[lo, hi]`, holding no point yet.
+    pub fn new(lo: [f64; 2], hi: [f64; 2], cells: usize) -> Self {
+        let (w, h) = (hi[0] - lo[0], hi[1] - lo[1]);
+        let area = (w * h).max(f64::MIN_POSITIVE);
+        let side = (area / cells.max(1) as f64).sqrt();
+        let side = if side > 0.0 && side.is_finite() {
+            side
+        } else {
+            1.0
+        };
+        let scale = 1.0 / side;
+        let count = |len: f64| ((len * scale).floor() as usize).clamp(1, 1 << 12);
+        let (nx, ny) = (count(w) + 1, count(h) + 1);
+        let scale = if w.max(h) > 0.0 { scale } else { 0.0 };
+        Cloud {
+            points: Vec::new(),
+            lo,
+            scale,
+            nx,
+            ny,
+            buckets: vec![Vec::new(); nx * ny],
+        }
+    }
+
+    /// Adds a point; returns its index.
+    pub fn push(&mut self, p: [f64; 2]) -> u32 {
+        let i = self.points.len() as u32;
+        let (cx, cy) = self.cell(&p);
+        self.buckets[cy * self.nx + cx].push(i);
+        self.points.push(p);
+        i
+    }
+
+    /// Adds a point that queries never return (an input copy of an earlier point).
+    pub fn push_unindexed(&mut self, p: [f64; 2]) -> u32 {
+        self.points.push(p);
+        (self.points.len() - 1) as u32
+    }
+
+    /// Calls `f` with every grid cell `(x, y)` that meets the box `[lo, hi]`.
+    pub fn cells_of_box(&self, lo: [f64; 2], hi: [f64; 2], mut f: impl FnMut((usize, usize))) {
+        let (x0, y0) = self.cell(&lo);
+        let (x1, y1) = self.cell(&hi);
+        for cy in y0..=y1 {
+            for cx in x0..=x1 {
+                f((cx, cy));
+            }
+        }
+    }
+
+    fn cell(&self, p: &[f64; 2]) -> (usize, usize) {
+        let axis = |k: usize, n: usize| {
+            let c = ((p[k] - self.lo[k]) * self.scale).floor();
+            if c.is_nan() || c < 0.0 {
+                0
+            } else {
+                (c as usize).min(n - 1)
+            }
+        };
+        (axis(0, self.nx), axis(1, self.ny))
+    }
+
+    /// Calls `f` with every point whose bucket meets the box `[lo, hi]` (a superset of the
+    /// points in the box).
+    pub fn candidates(&self, lo: [f64; 2], hi: [f64; 2], mut f: impl FnMut(u32)) {
+        let (x0, y0) = self.cell(&lo);
+        let (x1, y1) = self.cell(&hi);
+        for cy in y0..=y1 {
+            for cx in x0..=x1 {
+                self.buckets[cy * self.nx + cx].iter().for_each(|&i| f(i));
+            }
+        }
+    }
+
+    /// The points other than `a` and `b` in the closed small disk of `[a b]` (the disk with
+    /// diameter `[a b]`), decided exactly, in increasing index order.
+    pub fn in_small_disk(&self, a: u32, b: u32) -> Vec<u32> {
+        let (pa, pb) = (self.points[a as usize], self.points[b as usize]);
+        let (lo, hi) = widened_box(&pa, &pb);
+        let mut found = Vec::new();
+        self.candidates(lo, hi, |i| {
+            if i != a && i != b && dot_sign(&pa, &pb, &self.points[i as usize]) != Sign::Positive {
+                found.push(i);
+            }
+        });
+        found.sort_unstable();
+        found
+    }
+
+    /// The points other than `a`, `b`, `c` in the closed circumdisk of the non-collinear
+    /// `a, b, c`, with the exact sign of each (`Positive` inside, `Zero` on the circle), in
+    /// increasing index order.
+    pub fn in_circumdisk(&self, a: u32, b: u32, c: u32) -> Vec<(u32, Sign)> {
+        let [pa, pb, pc] = [a, b, c].map(|i| self.points[i as usize]);
+        let (lo, hi) =
+            circumdisk_box(&pa, &pb, &pc).unwrap_or(([f64::NEG_INFINITY; 2], [f64::INFINITY; 2]));
+        let mut found = Vec::new();
+        self.candidates(lo, hi, |i| {
+            if i == a || i == b || i == c {
+                return;
+            }
+            let s = in_circumcircle(&pa, &pb, &pc, &self.points[i as usize]);
+            if s != Sign::Negative {
+                found.push((i, s));
+            }
+        });
+        found.sort_unstable_by_key(|&(i, _)| i);
+        found
+    }
+}
+
+/// The bounding box of `a, b`, widened by a relative margin that covers the rounding of the
+/// box itself: the small disk of `[a b]` lies in it.
+fn widened_box(a: &[f64; 2], b: &[f64; 2]) -> ([f64; 2], [f64; 2]) {
+    let c = [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
+    let r = ((a[0] - b[0]).hypot(a[1] - b[1]) * 0.5) * (1.0 + 1e-9) + 1e-300;
+    let pad = |x: f64| x.abs() * 4.0 * f64::EPSILON;
+    (
+        [c[0] - r - pad(c[0]), c[1] - r - pad(c[1])],
+        [c[0] + r + pad(c[0]), c[1] + r + pad(c[1])],
+    )
+}
+
+/// A box holding the circumdisk of `a, b, c`, or `None` when the disk is too large or too
+/// ill-conditioned to bound reliably in floating point (then every point is a candidate).
+fn circumdisk_box(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Option<([f64; 2], [f64; 2])> {
+    let (bx, by) = (b[0] - a[0], b[1] - a[1]);
+    let (cx, cy) = (c[0] - a[0], c[1] - a[1]);
+    let d = 2.0 * (bx * cy - by * cx);
+    let (b2, c2) = (bx * bx + by * by, cx * cx + cy * cy);
+    let ux = (cy * b2 - by * c2) / d;
+    let uy = (bx * c2 - cx * b2) / d;
+    let r = ux.hypot(uy);
+    let longest = b2
+        .max(c2)
+        .max((c[0] - b[0]).powi(2) + (c[1] - b[1]).powi(2))
+        .sqrt();
+    // The computed centre is off by about eps * r^2 / longest; past r = 1e3 * longest, give up.
+    if !r.is_finite() || r > 1e3 * longest {
+        return None;
+    }
+    let centre = [a[0] + ux, a[1] + uy];
+    let margin = r * 1e-6 + (centre[0].abs() + centre[1].abs()) * 8.0 * f64::EPSILON;
+    let r = r + margin;
+    Some((
+        [centre[0] - r, centre[1] - r],
+        [centre[0] + r, centre[1] + r],
+    ))
+}

@@ -1,0 +1,204 @@
+//! Checks of a planar straight-line graph (points and segments) before triangulation: what
+//! Pébay §3 assumes of a constraint field (Definition 1.5: edges between distinct points of
+//! `S`, meeting only at their ends). Every failure names its culprits (at most
+//! [`MAX_CULPRITS`] of them, then a count).
+
+use std::collections::HashSet;
+
+use super::cloud::Cloud;
+use super::exact::dot_sign;
+use crate::error::{Error, Result};
+use crate::predicates::{orient2d, Sign};
+use crate::triangulation::MAX_COORDINATE;
+
+/// Culprits named in one message.
+pub const MAX_CULPRITS: usize = 5;
+
+/// Largest number of points: indices are `u32` and the infinite vertex is `u32::MAX`.
+pub const MAX_POINTS_2D: usize = (u32::MAX / 2) as usize;
+
+/// The points of `xy` (x y interleaved), checked finite and within the coordinate limit.
+pub fn points(xy: &[f64]) -> Result<Vec<[f64; 2]>> {
+    let (points, rest) = xy.as_chunks::<2>();
+    if !rest.is_empty() {
+        return Err(Error::invalid_input(format!(
+            "{} coordinates is not a multiple of 2",
+            xy.len()
+        )));
+    }
+    if points.len() > MAX_POINTS_2D {
+        return Err(Error::invalid_input(format!(
+            "{} points is more than the limit {MAX_POINTS_2D}",
+            points.len()
+        )));
+    }
+    let bad: Vec<usize> = (0..points.len())
+        .filter(|&i| {
+            points[i]
+                .iter()
+                .any(|x| !x.is_finite() || x.abs() > MAX_COORDINATE)
+        })
+        .collect();
+    if !bad.is_empty() {
+        return Err(Error::invalid_input(format!(
+            "point{} {} ha{} a non-finite coordinate or one of magnitude above {MAX_COORDINATE:e}",
+            plural(bad.len()),
+            culprits(&bad),
+            if bad.len() == 1 { "s" } else { "ve" }
+        )));
+    }
+    Ok(points.to_vec())
+}
+
+/// The segments of `pairs` (2 point indices each) with their ends mapped through `first`
+/// (duplicate points merged), repeated segments dropped (the first kept), in input order,
+/// with the index of the input segment each comes from. Fails on an index out of range, a
+/// zero-length segment, a point on an open segment, or two crossing segments.
+pub fn segments(
+    pairs: &[u32],
+    points: &[[f64; 2]],
+    first: &[u32],
+    cloud: &Cloud,
+) -> Result<(Vec<[u32; 2]>, Vec<u32>)> {
+    let (pairs, rest) = pairs.as_chunks::<2>();
+    if !rest.is_empty() {
+        return Err(Error::invalid_input("segment indices are not in pairs"));
+    }
+    let n = points.len();
+    let out_of_range: Vec<usize> = (0..pairs.len())
+        .filter(|&k| pairs[k].iter().any(|&i| i as usize >= n))
+        .collect();
+    if !out_of_range.is_empty() {
+        return Err(Error::invalid_input(format!(
+            "segment{} {} reference{} a point index out of range (n_points = {n})",
+            plural(out_of_range.len()),
+            culprits(&out_of_range),
+            if out_of_range.len() == 1 { "s" } else { "" }
+        )));
+    }
+    let merged: Vec<[u32; 2]> = pairs.iter().map(|s| s.map(|i| first[i as usize])).collect();
+    let zero: Vec<usize> = (0..merged.len())
+        .filter(|&k| merged[k][0] == merged[k][1])
+        .collect();
+    if !zero.is_empty() {
+        return Err(Error::invalid_input(format!(
+            "segment{} {} ha{} zero length (both ends at the same point)",
+            plural(zero.len()),
+            culprits(&zero),
+            if zero.len() == 1 { "s" } else { "ve" }
+        )));
+    }
+    let mut seen = HashSet::new();
+    let mut kept = Vec::new();
+    let mut origin = Vec::new();
+    for (k, s) in merged.iter().enumerate() {
+        if seen.insert((s[0].min(s[1]), s[0].max(s[1]))) {
+            kept.push(*s);
+            origin.push(k as u32);
+        }
+    }
+    points_on_segments(&kept, &origin, points, cloud)?;
+    crossings(&kept, &origin, points, cloud)?;
+    Ok((kept, origin))
+}
+
+/// Fails when a point lies on the open segment of a segment.
+fn points_on_segments(
+    segs: &[[u32; 2]],
+    origin: &[u32],
+    points: &[[f64; 2]],
+    cloud: &Cloud,
+) -> Result<()> {
+    let mut found = Vec::new();
+    for (k, s) in segs.iter().enumerate() {
+        let (a, b) = (&points[s[0] as usize], &points[s[1] as usize]);
+        for q in cloud.in_small_disk(s[0], s[1]) {
+            let p = &points[q as usize];
+            if p != a
+                && p != b
+                && orient2d(a, b, p) == Sign::Zero
+                && dot_sign(a, b, p) == Sign::Negative
+            {
+                found.push(format!("point {q} lies on segment {}", origin[k]));
+            }
+        }
+    }
+    fail_with(found)
+}
+
+/// Fails when two segments cross (the pairs that touch share an end or were reported as a
+/// point on a segment). Candidate pairs share a grid bucket of their bounding boxes.
+fn crossings(segs: &[[u32; 2]], origin: &[u32], points: &[[f64; 2]], cloud: &Cloud) -> Result<()> {
+    let p = |i: u32| &points[i as usize];
+    let mut buckets: std::collections::HashMap<(usize, usize), Vec<u32>> = Default::default();
+    for (k, s) in segs.iter().enumerate() {
+        let (a, b) = (p(s[0]), p(s[1]));
+        let lo = [a[0].min(b[0]), a[1].min(b[1])];
+        let hi = [a[0].max(b[0]), a[1].max(b[1])];
+        cloud.cells_of_box(lo, hi, |cell| {
+            buckets.entry(cell).or_default().push(k as u32)
+        });
+    }
+    let mut tested = HashSet::new();
+    let mut found = Vec::new();
+    let mut cells: Vec<_> = buckets.into_iter().collect();
+    cells.sort_unstable();
+    for (_, list) in cells {
+        for (x, &s) in list.iter().enumerate() {
+            for &t in &list[x + 1..] {
+                if !tested.insert((s, t)) {
+                    continue;
+                }
+                let ([a, b], [c, d]) = (segs[s as usize], segs[t as usize]);
+                if a == c || a == d || b == c || b == d {
+                    continue;
+                }
+                let o1 = orient2d(p(a), p(b), p(c)) * orient2d(p(a), p(b), p(d));
+                let o2 = orient2d(p(c), p(d), p(a)) * orient2d(p(c), p(d), p(b));
+                if o1 == Sign::Negative && o2 == Sign::Negative {
+                    found.push(format!(
+                        "segments {} and {} cross",
+                        origin[s as usize], origin[t as usize]
+                    ));
+                }
+            }
+        }
+    }
+    fail_with(found)
+}
+
+fn fail_with(mut found: Vec<String>) -> Result<()> {
+    if found.is_empty() {
+        return Ok(());
+    }
+    found.sort();
+    let more = found.len().saturating_sub(MAX_CULPRITS);
+    found.truncate(MAX_CULPRITS);
+    let mut message = found.join("; ");
+    if more > 0 {
+        message.push_str(&format!("; and {more} more"));
+    }
+    Err(Error::invalid_input(message))
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
+/// The first culprits' indices, comma-separated, and how many more.
+fn culprits(list: &[usize]) -> String {
+    let shown: Vec<String> = list
+        .iter()
+        .take(MAX_CULPRITS)
+        .map(|i| i.to_string())
+        .collect();
+    let mut text = shown.join(", ");
+    if list.len() > MAX_CULPRITS {
+        text.push_str(&format!(" and {} more", list.len() - MAX_CULPRITS));
+    }
+    text
+}

@@ -1,0 +1,234 @@
+//! Planar triangulation (DESIGN.md layer 6, "2D"): Delaunay triangulations of points, and
+//! conforming Delaunay triangulations of planar straight-line graphs by Pébay's a-priori
+//! subdivision of the constraints (P. Pébay, INRIA RR-3492, 1998, in
+//! `papers/pebay-1998-delaunay-admissible-constraint-2d.txt`).
+//!
+//! What implements which part of the paper:
+//! - [`classify`]: §2 — the classification `Θ₂` of an edge (Definition 2.2) and strong
+//!   Delaunay-admissibility, membership in the Delaunay *cover* (Definition 2.3, Theorem 2.1),
+//!   exact, with no general-position assumption;
+//! - [`subdivide`]: §3 — Algorithm 3.2 (`projection`, `nettoyage` at closed nodes, open and
+//!   closed nodes of Definition 3.1, edges by decreasing count of points in their small disk,
+//!   a bucket grid for the small-disk queries of §3.3), with a better `nettoyage` distance than
+//!   the paper's `d_i / 2`;
+//! - [`delaunay`]: the Delaunay triangulation itself (§1.2), Bowyer–Watson with a walk, ties
+//!   broken by a symbolic perturbation so that the output is a function of the point set.
+//!
+//! Invariants of a result (checked by [`validate_mesh`]): every triangle counter-clockwise
+//! (exact `orient2d > 0`) with vertex indices in range; input points first, in input order,
+//! then the added points; every constraint sub-edge `Mesh::edges` is an edge of a triangle and
+//! strongly Delaunay-admissible relative to all vertices (the property tests check it again,
+//! independently).
+
+pub mod classify;
+pub mod cloud;
+pub mod delaunay;
+pub mod exact;
+pub mod input;
+pub mod subdivide;
+
+use crate::error::{Error, Result};
+use crate::mesh::{Mesh, DIMENSION_UNKNOWN};
+use crate::predicates::{orient2d, Sign};
+use cloud::Cloud;
+use delaunay::{first_duplicates, Delaunay2d};
+use subdivide::{Subdivision, SubdivisionReport};
+
+/// Vertex dimension of an input point at a segment end (a corner).
+pub const DIMENSION_CORNER: i8 = 0;
+/// Vertex dimension of a point added on a segment.
+pub const DIMENSION_SEGMENT: i8 = 1;
+/// Vertex dimension of an input point on no segment.
+pub const DIMENSION_PLANE: i8 = 2;
+
+/// Points added by the subdivision at most, per input point and segment (a guard against
+/// runaway subdivision of pathological inputs; never reached by the paper's examples).
+const ADDED_POINTS_PER_ITEM: usize = 1 << 12;
+
+/// Pébay's triangle *degradation* `α h / r` (§4: `h` the longest edge, `r` the inradius,
+/// `α = √3 / 6` so that the equilateral triangle scores 1) over a triangulation.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Degradation {
+    pub best: f64,
+    pub worst: f64,
+    pub mean: f64,
+}
+
+/// The outcome of [`conforming_2d`].
+#[derive(Clone, Debug)]
+pub struct Conforming2d {
+    pub mesh: Mesh,
+    /// Points added on the segments (`mesh` vertices past the input points).
+    pub inserted: usize,
+    pub subdivision: SubdivisionReport,
+    pub degradation: Degradation,
+}
+
+/// The Delaunay triangulation of the points `xy` (x y interleaved): all finite triangles of
+/// the triangulation of their convex hull, counter-clockwise, label 1. Output vertex `i` is
+/// input point `i` (z = 0); duplicates are merged onto their first occurrence.
+pub fn delaunay_2d(xy: &[f64]) -> Result<Mesh> {
+    let points = input::points(xy)?;
+    let dt = Delaunay2d::new(&points)?;
+    let dims = vec![DIMENSION_UNKNOWN; points.len()];
+    Ok(mesh_of(&points, &dt, dims, Vec::new()))
+}
+
+/// Pébay's conforming Delaunay triangulation of the points `xy` and the segments `segments`
+/// (pairs of point indices): the segments are subdivided a priori (Algorithm 3.2) until every
+/// sub-segment is strongly Delaunay-admissible, then the augmented point set is triangulated.
+/// `Mesh::edges` lists the sub-segments, by input segment and along it.
+pub fn conforming_2d(xy: &[f64], segments: &[u32]) -> Result<Conforming2d> {
+    let points = input::points(xy)?;
+    let first = first_duplicates(&points);
+    let cloud = cloud_of(&points, &first, segments.len() / 2);
+    let (segs, origin) = input::segments(segments, &points, &first, &cloud)?;
+    let limit = ADDED_POINTS_PER_ITEM.saturating_mul(points.len() + segs.len());
+    let mut sub = Subdivision::new(cloud, &segs, limit);
+    sub.run()?;
+    let all = sub.cloud.points.clone();
+    let dt = Delaunay2d::new(&all)?;
+    let mut dims = vec![DIMENSION_PLANE; all.len()];
+    for s in &segs {
+        dims[s[0] as usize] = DIMENSION_CORNER;
+        dims[s[1] as usize] = DIMENSION_CORNER;
+    }
+    dims[points.len()..].fill(DIMENSION_SEGMENT);
+    let edges = ordered_sub_edges(&sub, &segs, &origin, &all, dt.duplicate_of());
+    let mesh = mesh_of(&all, &dt, dims, edges);
+    validate_mesh(&mesh).map_err(|m| Error::internal(format!("conforming 2D result: {m}")))?;
+    Ok(Conforming2d {
+        inserted: all.len() - points.len(),
+        degradation: degradation(&mesh),
+        subdivision: sub.report,
+        mesh,
+    })
+}
+
+/// The grid of the input points, copies of an earlier point left out of the buckets.
+fn cloud_of(points: &[[f64; 2]], first: &[u32], n_segments: usize) -> Cloud {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in points {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if points.is_empty() {
+        (lo, hi) = ([0.0; 2], [1.0; 2]);
+    }
+    let mut cloud = Cloud::new(lo, hi, points.len() + n_segments);
+    for (i, p) in points.iter().enumerate() {
+        if first[i] as usize == i {
+            cloud.push(*p);
+        } else {
+            cloud.push_unindexed(*p);
+        }
+    }
+    cloud
+}
+
+/// The live sub-edges, ordered by input segment and along it from its first end, oriented
+/// that way; ends mapped through `duplicate_of`.
+fn ordered_sub_edges(
+    sub: &Subdivision,
+    segs: &[[u32; 2]],
+    origin: &[u32],
+    points: &[[f64; 2]],
+    duplicate_of: &[u32],
+) -> Vec<u32> {
+    let mut keyed: Vec<(u32, f64, u32, u32)> = sub
+        .sub_edges()
+        .map(|(a, b, s)| {
+            let [p, q] = segs[s as usize].map(|i| points[i as usize]);
+            let along = |i: u32| {
+                let x = points[i as usize];
+                (x[0] - p[0]) * (q[0] - p[0]) + (x[1] - p[1]) * (q[1] - p[1])
+            };
+            let (a, b) = if along(a) <= along(b) { (a, b) } else { (b, a) };
+            (origin[s as usize], along(a), a, b)
+        })
+        .collect();
+    keyed.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    keyed
+        .into_iter()
+        .flat_map(|(_, _, a, b)| [duplicate_of[a as usize], duplicate_of[b as usize]])
+        .collect()
+}
+
+/// The mesh of a 2D triangulation: z = 0, label 1.
+fn mesh_of(points: &[[f64; 2]], dt: &Delaunay2d, mut dims: Vec<i8>, edges: Vec<u32>) -> Mesh {
+    let duplicate_of = dt.duplicate_of().to_vec();
+    for (i, &d) in duplicate_of.iter().enumerate() {
+        if d as usize != i {
+            dims[i] = DIMENSION_UNKNOWN;
+        }
+    }
+    let triangles: Vec<u32> = dt.triangles().into_iter().flatten().collect();
+    Mesh {
+        vertices: points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect(),
+        vertex_dimensions: dims,
+        triangle_labels: vec![1; triangles.len() / 3],
+        triangles,
+        edges,
+        duplicate_of,
+        ..Mesh::default()
+    }
+}
+
+/// Checks the invariants of a 2D result listed in the module documentation (but
+/// admissibility, which the tests check): the error names the first culprit.
+pub fn validate_mesh(mesh: &Mesh) -> std::result::Result<(), String> {
+    mesh.validate()?;
+    let p = |i: u32| {
+        let v = mesh.vertex(i);
+        [v[0], v[1]]
+    };
+    for (t, tri) in mesh.triangles.chunks_exact(3).enumerate() {
+        if orient2d(&p(tri[0]), &p(tri[1]), &p(tri[2])) != Sign::Positive {
+            return Err(format!("triangle {t} {tri:?} is not counter-clockwise"));
+        }
+    }
+    let mut sides = std::collections::HashSet::new();
+    for tri in mesh.triangles.chunks_exact(3) {
+        for k in 0..3 {
+            sides.insert((tri[k].min(tri[(k + 1) % 3]), tri[k].max(tri[(k + 1) % 3])));
+        }
+    }
+    for (e, edge) in mesh.edges.chunks_exact(2).enumerate() {
+        if !sides.contains(&(edge[0].min(edge[1]), edge[0].max(edge[1]))) {
+            return Err(format!(
+                "constraint edge {e} {edge:?} is not a triangle edge"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Pébay's degradation `α h / r` of every triangle of `mesh` (see [`Degradation`]).
+pub fn degradation(mesh: &Mesh) -> Degradation {
+    let alpha = 3f64.sqrt() / 6.0;
+    let mut out = Degradation {
+        best: f64::INFINITY,
+        worst: 0.0,
+        mean: 0.0,
+    };
+    let mut count = 0usize;
+    for tri in mesh.triangles.chunks_exact(3) {
+        let [a, b, c] = [0, 1, 2].map(|k| mesh.vertex(tri[k]));
+        let len = |p: [f64; 3], q: [f64; 3]| (p[0] - q[0]).hypot(p[1] - q[1]);
+        let (x, y, z) = (len(a, b), len(b, c), len(c, a));
+        let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs();
+        let inradius = 2.0 * area / (x + y + z);
+        let d = alpha * x.max(y).max(z) / inradius;
+        out.best = out.best.min(d);
+        out.worst = out.worst.max(d);
+        out.mean += d;
+        count += 1;
+    }
+    if count == 0 {
+        return Degradation::default();
+    }
+    out.mean /= count as f64;
+    out
+}

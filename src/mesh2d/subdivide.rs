@@ -1,0 +1,367 @@
+//! A-priori subdivision of the constraint edges (Pébay §3.3, Algorithm 3.2): split the edges
+//! of `Γ` until every sub-edge is strongly Delaunay-admissible relative to the augmented point
+//! set `S'`.
+//!
+//! - A *nodal centre* is a point where two constraint edges form an acute angle; its *node* is
+//!   every edge at that point (Definition 3.1). The node is *closed* when a cyclic sequence of
+//!   its edges has every two consecutive ones at an acute angle, i.e. when the graph "edges at
+//!   an acute angle" has a cycle; otherwise it is *open*.
+//! - A non-admissible edge at a closed nodal centre `P*` triggers `nettoyage` on the whole node:
+//!   every node edge `[P* M]` is cut at the same distance `d` from `P*`.
+//! - Any other non-admissible edge `[Pi Pj]` is cut by `projection`: at the orthogonal
+//!   projection of a point of its small disk (the one nearest to the edge's line).
+//! - Non-admissible edges are processed by decreasing number of points in their small disk
+//!   (§3.3's heuristic); the small-disk queries use the bucket grid of [`Cloud`].
+//!
+//! The distance `d` of `nettoyage`. The paper takes `d = d*/2`, `d*` the distance from `P*` to
+//! the nearest other point in the small disks of the node, and attributes the poor triangles
+//! of its examples to that choice. Here `d` is the largest length that keeps a margin: the
+//! small disk of `[P* M]` (length `d`) misses a point `Q` at distance `r` and angle `β` from
+//! the edge iff `d < r / cos β`, so with `d_max` the least of these bounds over the node,
+//! `d = min(L_min / 2, 3/4 d_max, 3/4 d_seg)`, where `L_min` is the shortest node edge (at most
+//! a half of it is cut off) and `d_seg` the distance from `P*` to every constraint edge not at
+//! `P*` (no point inserted later, always on a constraint edge, can enter the new small disks).
+//! Since `d_max >= d*`, this `d` is never below the paper's.
+//!
+//! Constructions are floating point (projections and cut points are rounded); every decision
+//! is exact. A rounded projection that would not separate its point from the two new edges'
+//! small disks is replaced by the midpoint, whose disks shrink geometrically.
+
+use std::collections::BinaryHeap;
+
+use super::classify::classify_with;
+use super::cloud::Cloud;
+use super::exact::dot_sign;
+use crate::error::{Error, ErrorKind, Result};
+use crate::predicates::Sign;
+
+/// A constraint sub-edge.
+#[derive(Clone, Copy, Debug)]
+struct Edge {
+    a: u32,
+    b: u32,
+    /// The input segment it is part of.
+    segment: u32,
+    alive: bool,
+}
+
+/// What the subdivision did.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct SubdivisionReport {
+    /// Points added by `projection` (midpoint fallbacks included).
+    pub projections: usize,
+    /// Points added by `nettoyage`.
+    pub cleanings: usize,
+    /// Projections replaced by a midpoint (rounding would have kept the point in a disk).
+    pub midpoint_fallbacks: usize,
+    /// Closed nodes cleaned.
+    pub closed_nodes_cleaned: usize,
+    /// Full re-classification passes.
+    pub rounds: usize,
+}
+
+/// The subdivision state: `S'` (in the cloud) and `Γ'`.
+pub struct Subdivision {
+    pub cloud: Cloud,
+    edges: Vec<Edge>,
+    /// Edges at each point (ids into `edges`, live or not: filtered on use).
+    incident: Vec<Vec<u32>>,
+    pub report: SubdivisionReport,
+    limit: usize,
+}
+
+impl Subdivision {
+    /// `cloud` holds `S`; `segments` are pairs of distinct point indices forming a valid
+    /// constraint field (no crossing, no point on an open segment). At most `limit` points are
+    /// added.
+    pub fn new(cloud: Cloud, segments: &[[u32; 2]], limit: usize) -> Self {
+        let mut incident = vec![Vec::new(); cloud.points.len()];
+        let edges = segments
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                incident[s[0] as usize].push(k as u32);
+                incident[s[1] as usize].push(k as u32);
+                Edge {
+                    a: s[0],
+                    b: s[1],
+                    segment: k as u32,
+                    alive: true,
+                }
+            })
+            .collect();
+        Subdivision {
+            cloud,
+            edges,
+            incident,
+            report: SubdivisionReport::default(),
+            limit,
+        }
+    }
+
+    /// Runs Algorithm 3.2 to completion: afterwards every live sub-edge is strongly
+    /// Delaunay-admissible relative to all points of the cloud.
+    pub fn run(&mut self) -> Result<()> {
+        loop {
+            self.report.rounds += 1;
+            let bad = self.non_admissible();
+            if bad.is_empty() {
+                return Ok(());
+            }
+            self.clean_closed_nodes(&bad)?;
+            let mut heap: BinaryHeap<(usize, std::cmp::Reverse<u32>)> = BinaryHeap::new();
+            for e in bad {
+                let count = self.disk_points(e).len();
+                heap.push((count, std::cmp::Reverse(e)));
+            }
+            while let Some((_, std::cmp::Reverse(e))) = heap.pop() {
+                if !self.edges[e as usize].alive {
+                    continue;
+                }
+                let disk = self.disk_points(e);
+                if self.admissible_with(e, &disk) {
+                    continue;
+                }
+                let [e1, e2] = self.project(e, &disk)?;
+                for f in [e1, e2] {
+                    let disk = self.disk_points(f);
+                    if !self.admissible_with(f, &disk) {
+                        heap.push((disk.len(), std::cmp::Reverse(f)));
+                    }
+                }
+            }
+        }
+    }
+
+    /// The live sub-edges, as `(a, b, segment)`.
+    pub fn sub_edges(&self) -> impl Iterator<Item = (u32, u32, u32)> + '_ {
+        self.edges
+            .iter()
+            .filter(|e| e.alive)
+            .map(|e| (e.a, e.b, e.segment))
+    }
+
+    /// The live edges that are not strongly admissible, in id order.
+    fn non_admissible(&self) -> Vec<u32> {
+        (0..self.edges.len() as u32)
+            .filter(|&e| self.edges[e as usize].alive)
+            .filter(|&e| !self.admissible_with(e, &self.disk_points(e)))
+            .collect()
+    }
+
+    fn disk_points(&self, e: u32) -> Vec<u32> {
+        let edge = self.edges[e as usize];
+        self.cloud.in_small_disk(edge.a, edge.b)
+    }
+
+    fn admissible_with(&self, e: u32, disk: &[u32]) -> bool {
+        let edge = self.edges[e as usize];
+        classify_with(&self.cloud, edge.a, edge.b, disk).strongly_admissible()
+    }
+
+    fn point(&self, i: u32) -> [f64; 2] {
+        self.cloud.points[i as usize]
+    }
+
+    /// The live edges at point `p`, each oriented away from `p`: (edge id, far end).
+    fn node(&self, p: u32) -> Vec<(u32, u32)> {
+        self.incident[p as usize]
+            .iter()
+            .filter(|&&e| self.edges[e as usize].alive)
+            .map(|&e| {
+                let edge = self.edges[e as usize];
+                (e, if edge.a == p { edge.b } else { edge.a })
+            })
+            .collect()
+    }
+
+    /// Whether the edges at `p` make it a closed nodal centre: the graph joining every two
+    /// edges at an acute angle has a cycle (union-find: an edge joining a component to
+    /// itself).
+    fn is_closed_node(&self, p: u32) -> bool {
+        let node = self.node(p);
+        if node.len() < 3 {
+            return false;
+        }
+        let centre = self.point(p);
+        let mut parent: Vec<usize> = (0..node.len()).collect();
+        fn root(parent: &mut [usize], mut x: usize) -> usize {
+            while parent[x] != x {
+                parent[x] = parent[parent[x]];
+                x = parent[x];
+            }
+            x
+        }
+        for u in 0..node.len() {
+            for v in u + 1..node.len() {
+                let (a, b) = (self.point(node[u].1), self.point(node[v].1));
+                if dot_sign(&a, &b, &centre) != Sign::Positive {
+                    continue;
+                }
+                let (ru, rv) = (root(&mut parent, u), root(&mut parent, v));
+                if ru == rv {
+                    return true;
+                }
+                parent[ru] = rv;
+            }
+        }
+        false
+    }
+
+    /// `nettoyage` at every closed nodal centre that ends a non-admissible edge of `bad`.
+    fn clean_closed_nodes(&mut self, bad: &[u32]) -> Result<()> {
+        let mut centres: Vec<u32> = bad
+            .iter()
+            .flat_map(|&e| [self.edges[e as usize].a, self.edges[e as usize].b])
+            .collect();
+        centres.sort_unstable();
+        centres.dedup();
+        for p in centres {
+            if self.is_closed_node(p) {
+                self.clean_node(p)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// `nettoyage(P*, M, d)` on every edge of the node at `p`, with the `d` of the module
+    /// documentation.
+    fn clean_node(&mut self, p: u32) -> Result<()> {
+        let node = self.node(p);
+        let centre = self.point(p);
+        let mut shortest = f64::INFINITY;
+        let mut d_max = f64::INFINITY;
+        for &(e, far) in &node {
+            let f = self.point(far);
+            let (ux, uy) = (f[0] - centre[0], f[1] - centre[1]);
+            let length = ux.hypot(uy);
+            shortest = shortest.min(length);
+            d_max = d_max.min(length);
+            for q in self.disk_points(e) {
+                let q = self.point(q);
+                let (vx, vy) = (q[0] - centre[0], q[1] - centre[1]);
+                let along = (ux * vx + uy * vy) / length;
+                if along > 0.0 {
+                    d_max = d_max.min((vx * vx + vy * vy) / along);
+                }
+            }
+        }
+        let d_seg = self.distance_to_other_edges(p);
+        let d = (shortest * 0.5).min(0.75 * d_max).min(0.75 * d_seg);
+        if d.is_nan() || d <= 0.0 {
+            return Err(Error::internal(format!(
+                "nettoyage at point {p}: no positive cut distance"
+            )));
+        }
+        for (e, far) in node {
+            let f = self.point(far);
+            let length = (f[0] - centre[0]).hypot(f[1] - centre[1]);
+            let t = d / length;
+            let m = [
+                centre[0] + t * (f[0] - centre[0]),
+                centre[1] + t * (f[1] - centre[1]),
+            ];
+            self.split(e, m)?;
+            self.report.cleanings += 1;
+        }
+        self.report.closed_nodes_cleaned += 1;
+        Ok(())
+    }
+
+    /// The distance from point `p` to the nearest live edge not at `p`.
+    fn distance_to_other_edges(&self, p: u32) -> f64 {
+        let c = self.point(p);
+        self.edges
+            .iter()
+            .filter(|e| e.alive && e.a != p && e.b != p)
+            .map(|e| point_segment_distance(&c, &self.point(e.a), &self.point(e.b)))
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    /// `projection(Pi, Pj, Pn)` on edge `e` with `Pn` the point of `disk` nearest to the
+    /// edge's line (ties: lowest index); the midpoint when rounding defeats the projection.
+    fn project(&mut self, e: u32, disk: &[u32]) -> Result<[u32; 2]> {
+        let edge = self.edges[e as usize];
+        let (a, b) = (self.point(edge.a), self.point(edge.b));
+        let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
+        let height = |q: u32| {
+            let q = self.point(q);
+            ((q[0] - a[0]) * uy - (q[1] - a[1]) * ux).abs()
+        };
+        let n = disk
+            .iter()
+            .copied()
+            .min_by(|&x, &y| height(x).total_cmp(&height(y)).then(x.cmp(&y)))
+            .ok_or_else(|| Error::internal(format!("projection on edge {e}: empty small disk")))?;
+        let q = self.point(n);
+        let t = ((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / (ux * ux + uy * uy);
+        let m = [a[0] + t * ux, a[1] + t * uy];
+        let separates = t > 0.0
+            && t < 1.0
+            && m != a
+            && m != b
+            && dot_sign(&a, &m, &q) == Sign::Positive
+            && dot_sign(&m, &b, &q) == Sign::Positive;
+        self.report.projections += 1;
+        if separates {
+            return self.split(e, m);
+        }
+        self.report.midpoint_fallbacks += 1;
+        let mid = [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
+        self.split(e, mid)
+    }
+
+    /// Splits edge `e` at the new point `m`; returns the two new edges.
+    fn split(&mut self, e: u32, m: [f64; 2]) -> Result<[u32; 2]> {
+        if self.report.projections + self.report.cleanings > self.limit {
+            return Err(Error::new(
+                ErrorKind::Limit,
+                format!(
+                    "constraint subdivision stopped after adding {} points (limit {})",
+                    self.report.projections + self.report.cleanings,
+                    self.limit
+                ),
+            ));
+        }
+        let edge = self.edges[e as usize];
+        let (a, b) = (self.point(edge.a), self.point(edge.b));
+        if m == a || m == b || !m[0].is_finite() || !m[1].is_finite() {
+            return Err(Error::internal(format!(
+                "edge {e} ({}, {}) is too short to split in floating point",
+                edge.a, edge.b
+            )));
+        }
+        self.edges[e as usize].alive = false;
+        let mid = self.cloud.push(m);
+        let first = self.edges.len() as u32;
+        for (x, y) in [(edge.a, mid), (mid, edge.b)] {
+            self.edges.push(Edge {
+                a: x,
+                b: y,
+                segment: edge.segment,
+                alive: true,
+            });
+        }
+        self.incident.push(vec![first, first + 1]);
+        for (end, new) in [(edge.a, first), (edge.b, first + 1)] {
+            let list = &mut self.incident[end as usize];
+            if let Some(slot) = list.iter_mut().find(|x| **x == e) {
+                *slot = new;
+            }
+        }
+        Ok([first, first + 1])
+    }
+}
+
+/// Euclidean distance from `p` to the segment `[a b]` (floating point).
+fn point_segment_distance(p: &[f64; 2], a: &[f64; 2], b: &[f64; 2]) -> f64 {
+    let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
+    let (vx, vy) = (p[0] - a[0], p[1] - a[1]);
+    let len2 = ux * ux + uy * uy;
+    let t = if len2 > 0.0 {
+        ((vx * ux + vy * uy) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (vx - t * ux).hypot(vy - t * uy)
+}
