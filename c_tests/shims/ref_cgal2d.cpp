@@ -1,0 +1,91 @@
+// CGAL planar references for the C tests (interface in ref_cgal2d.h). One translation unit:
+// CGAL headers are slow to compile.
+//
+// Kernel: Epick (exact predicates, inexact constructions), as for the 3D references; the
+// points CGAL adds on constrained edges are rounded, as delmesh's are.
+#include "ref_cgal2d.h"
+#include "ref_internal.hpp"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_conformer_2.h>
+
+#include <exception>
+#include <vector>
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_2<K>;
+using Fb = CGAL::Constrained_triangulation_face_base_2<K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
+
+// Every finite edge is locally Delaunay: the vertex opposite across it is not strictly inside
+// the circumcircle of the face (constrained edges included, which is what conforming means).
+bool is_delaunay(const Cdt &cdt) {
+  for (auto f : cdt.finite_face_handles()) {
+    for (int i = 0; i < 3; ++i) {
+      auto g = f->neighbor(i);
+      if (cdt.is_infinite(g)) continue;
+      auto v = g->vertex(g->index(f));
+      if (cdt.side_of_oriented_circle(f, v->point()) == CGAL::ON_POSITIVE_SIDE) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+extern "C" int ref_cgal_conforming_2d(const double *xy, size_t n, const uint32_t *segments,
+                                      size_t n_segments, RefConforming2d *out,
+                                      RefTiming *timing) {
+  try {
+    ref::Stopwatch clock;
+    Cdt cdt;
+    std::vector<Cdt::Vertex_handle> handles;
+    handles.reserve(n);
+    for (size_t i = 0; i < n; ++i) handles.push_back(cdt.insert(K::Point_2(xy[2 * i], xy[2 * i + 1])));
+    for (size_t k = 0; k < n_segments; ++k) {
+      uint32_t a = segments[2 * k], b = segments[2 * k + 1];
+      if (a >= n || b >= n) return ref::fail("segment index out of range");
+      if (handles[a] != handles[b]) cdt.insert_constraint(handles[a], handles[b]);
+    }
+    CGAL::make_conforming_Delaunay_2(cdt);
+    size_t constrained = 0;
+    for (auto e : cdt.finite_edges()) {
+      if (cdt.is_constrained(e)) ++constrained;
+    }
+    if (timing) timing->seconds = clock.seconds();
+    out->vertex_count = cdt.number_of_vertices();
+    out->constrained_edge_count = constrained;
+    out->valid = cdt.is_valid() && is_delaunay(cdt);
+    return 0;
+  } catch (const std::exception &e) {
+    return ref::fail(e.what());
+  } catch (...) {
+    return ref::fail("unknown C++ exception");
+  }
+}
+
+namespace {
+K::Point_2 point2(const double p[2]) { return K::Point_2(p[0], p[1]); }
+}  // namespace
+
+extern "C" int ref_small_disk_side(const double a[2], const double b[2], const double q[2]) {
+  switch (CGAL::side_of_bounded_circle(point2(a), point2(b), point2(q))) {
+    case CGAL::ON_BOUNDED_SIDE: return 1;
+    case CGAL::ON_BOUNDARY: return 0;
+    default: return -1;
+  }
+}
+
+extern "C" int ref_incircle_2(const double a[2], const double b[2], const double c[2],
+                              const double d[2]) {
+  return static_cast<int>(
+      CGAL::side_of_oriented_circle(point2(a), point2(b), point2(c), point2(d)));
+}
+
+extern "C" int ref_orient_2(const double a[2], const double b[2], const double c[2]) {
+  return static_cast<int>(CGAL::orientation(point2(a), point2(b), point2(c)));
+}

@@ -1,0 +1,472 @@
+/* Conforming Delaunay triangulation of planar straight-line graphs (API.md "2D"), against CGAL's
+ * Constrained_Delaunay_triangulation_2 + make_conforming_Delaunay_2 on generated cases: Pébay's
+ * situations (fans of acute edges at one point, chains of acute angles, closed nodes, discretized
+ * arcs), cocircular grids, tiny angles, long thin domains, random polygons.
+ *
+ * For each case, through the C API and with CGAL's exact predicates only:
+ * - validity: every triangle counter-clockwise, every edge in one or two triangles, the
+ *   triangulation Delaunay (every interior edge locally Delaunay), every vertex used;
+ * - every constraint sub-edge strongly Delaunay-admissible: no vertex in its closed small disk
+ *   but its ends, or else an edge between two triangles that are not cocircular (Pébay's types
+ *   1.0 / 1.2.0) or on the hull;
+ * - every input segment the union of its sub-edges (listed in order, through added points);
+ * - inserted points, ours beside CGAL's (CGAL's output must be valid too); ours must not exceed
+ *   CGAL's over all cases together, and each case's figures are printed. */
+#include "check.h"
+#include "prng.h"
+#include "ref_cgal2d.h"
+
+#include <delmesh.h>
+
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_ITEMS 4096
+
+typedef struct Case {
+  char name[96];
+  double xy[2 * MAX_ITEMS];
+  size_t n;
+  uint32_t seg[2 * MAX_ITEMS];
+  size_t m;
+} Case;
+
+static const double PI = 3.14159265358979323846;
+
+static uint32_t add_point(Case *c, double x, double y) {
+  c->xy[2 * c->n] = x;
+  c->xy[2 * c->n + 1] = y;
+  return (uint32_t)c->n++;
+}
+
+static void add_segment(Case *c, uint32_t a, uint32_t b) {
+  c->seg[2 * c->m] = a;
+  c->seg[2 * c->m + 1] = b;
+  c->m++;
+}
+
+static void polyline(Case *c, uint32_t first, uint32_t count, int closed) {
+  for (uint32_t i = 0; i + 1 < count; ++i) add_segment(c, first + i, first + i + 1);
+  if (closed) add_segment(c, first + count - 1, first);
+}
+
+/* ---------------------------------------------------------------- generated cases */
+
+static void make_fan(Case *c, int k, double spread) {
+  snprintf(c->name, sizeof c->name, "fan of %d edges over %.0f degrees", k, spread);
+  add_point(c, 0.0, 0.0);
+  for (int i = 0; i < k; ++i) {
+    double a = spread * i / k * PI / 180.0, r = 1.0 + 0.37 * ((i * 7) % 5);
+    add_segment(c, 0, add_point(c, r * cos(a), r * sin(a)));
+  }
+}
+
+static void make_zigzag(Case *c) {
+  snprintf(c->name, sizeof c->name, "zigzag of acute angles");
+  for (int i = 0; i < 12; ++i) add_point(c, i % 2 ? 3.0 : 0.0, 0.3 * (i / 2) + (i % 2 ? 1.0 : 0.0));
+  polyline(c, 0, 12, 0);
+}
+
+static void make_spiral(Case *c) {
+  snprintf(c->name, sizeof c->name, "spiral of acute turns");
+  for (int i = 0; i < 30; ++i) {
+    double a = 1.2 * i, r = 1.0 + 0.15 * i;
+    add_point(c, r * cos(a), r * sin(a));
+  }
+  polyline(c, 0, 30, 0);
+}
+
+static void make_closed_nodes(Case *c) {
+  snprintf(c->name, sizeof c->name, "two closed nodes");
+  double centre[2][2] = {{0.0, 0.0}, {3.0, 0.2}};
+  add_point(c, 0.0, 0.0);
+  add_point(c, 3.0, 0.2);
+  for (int s = 0; s < 2; ++s) {
+    for (int i = 0; i < 9; ++i) {
+      double a = (i * 40.0 + 10.0 * s) * PI / 180.0, r = i % 2 ? 0.6 : 1.0;
+      add_segment(c, (uint32_t)s, add_point(c, centre[s][0] + r * cos(a), centre[s][1] + r * sin(a)));
+    }
+  }
+}
+
+static void make_arcs(Case *c) {
+  snprintf(c->name, sizeof c->name, "discretized arcs splitting a box");
+  add_point(c, -1, -1);
+  add_point(c, 5, -1);
+  add_point(c, 5, 4);
+  add_point(c, -1, 4);
+  polyline(c, 0, 4, 1);
+  uint32_t first = (uint32_t)c->n;
+  for (int i = 0; i <= 16; ++i) {
+    double a = PI * (1.0 - i / 16.0);
+    add_point(c, 2.0 + 2.0 * cos(a), 2.0 * sin(a));
+  }
+  polyline(c, first, 17, 0);
+  add_segment(c, 0, first);
+  add_segment(c, 1, first + 16);
+  for (int k = 0; k < 2; ++k) {
+    double radius = k ? 2.1 : 1.9;
+    uint32_t start = (uint32_t)c->n;
+    for (int i = 0; i < 16; ++i) {
+      double a = PI * (1.0 - (i + 0.5) / 16.0);
+      add_point(c, 2.0 + radius * cos(a), radius * sin(a));
+    }
+    polyline(c, start, 16, 0);
+  }
+}
+
+static void make_grid(Case *c) {
+  snprintf(c->name, sizeof c->name, "cocircular 8x8 grid with constraints");
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) add_point(c, x, y);
+#define ID(x, y) ((uint32_t)((y) * 8 + (x)))
+  for (int i = 0; i < 7; ++i) {
+    add_segment(c, ID(i, 0), ID(i + 1, 0));
+    add_segment(c, ID(i, 7), ID(i + 1, 7));
+    add_segment(c, ID(0, i), ID(0, i + 1));
+    add_segment(c, ID(7, i), ID(7, i + 1));
+  }
+  add_segment(c, ID(1, 1), ID(6, 3));
+  add_segment(c, ID(1, 6), ID(6, 5));
+  add_segment(c, ID(2, 2), ID(3, 5));
+#undef ID
+}
+
+static void make_tiny_angle(Case *c, double degrees) {
+  snprintf(c->name, sizeof c->name, "%.0f degree angle", degrees);
+  double a = degrees * PI / 180.0;
+  add_point(c, 0, 0);
+  add_point(c, 1, 0);
+  add_point(c, 0.8 * cos(a), 0.8 * sin(a));
+  add_point(c, 0.5, -0.5);
+  add_segment(c, 0, 1);
+  add_segment(c, 0, 2);
+  add_segment(c, 0, 3);
+}
+
+static void make_thin_domain(Case *c) {
+  snprintf(c->name, sizeof c->name, "long thin domain with a wavy midline");
+  add_point(c, 0, 0);
+  add_point(c, 40, 0);
+  add_point(c, 40, 1);
+  add_point(c, 0, 1);
+  polyline(c, 0, 4, 1);
+  uint32_t first = (uint32_t)c->n;
+  for (int i = 0; i <= 40; ++i) add_point(c, 0.5 + 0.975 * i, 0.5 + 0.3 * sin(1.3 * i));
+  polyline(c, first, 41, 0);
+}
+
+static void make_thin_rhombus(Case *c) {
+  snprintf(c->name, sizeof c->name, "thin rhombus with interior points");
+  add_point(c, 0, 0);
+  add_point(c, 10, 0.7);
+  add_point(c, 20, 0);
+  add_point(c, 10, -0.7);
+  polyline(c, 0, 4, 1);
+  for (int i = 1; i < 10; ++i) add_point(c, 2.0 * i, 0.05 * ((i * 3) % 5 - 2));
+}
+
+static void make_star_polygon(Case *c, int k, uint64_t seed) {
+  snprintf(c->name, sizeof c->name, "random star polygon of %d edges", k);
+  Prng g = prng_new(seed);
+  double angle[MAX_ITEMS];
+  for (int i = 0; i < k; ++i) angle[i] = prng_uniform(&g) * 2.0 * PI;
+  for (int i = 1; i < k; ++i) /* insertion sort */
+    for (int j = i; j > 0 && angle[j] < angle[j - 1]; --j) {
+      double t = angle[j];
+      angle[j] = angle[j - 1];
+      angle[j - 1] = t;
+    }
+  for (int i = 0; i < k; ++i) {
+    double r = 0.3 + 0.7 * prng_uniform(&g);
+    add_point(c, r * cos(angle[i]), r * sin(angle[i]));
+  }
+  polyline(c, 0, (uint32_t)k, 1);
+  for (int i = 0; i < k; ++i) add_point(c, 0.4 * prng_uniform(&g) - 0.2, 0.4 * prng_uniform(&g) - 0.2);
+}
+
+/* ---------------------------------------------------------------- checks */
+
+static const double *vtx(const double *xyz, uint32_t i, double out[2]) {
+  out[0] = xyz[3 * (size_t)i];
+  out[1] = xyz[3 * (size_t)i + 1];
+  return out;
+}
+
+typedef struct EdgeUse {
+  uint32_t a, b; /* a < b */
+  uint32_t opposite[2];
+  int count;
+} EdgeUse;
+
+static int cmp_edge(const void *x, const void *y) {
+  const EdgeUse *e = x, *f = y;
+  if (e->a != f->a) return e->a < f->a ? -1 : 1;
+  if (e->b != f->b) return e->b < f->b ? -1 : 1;
+  return 0;
+}
+
+/* The triangle edges with their opposite vertices, sorted; NULL when an edge is in more than
+ * two triangles. */
+static EdgeUse *edge_table(const uint32_t *tri, size_t nt, size_t *count) {
+  EdgeUse *all = malloc(3 * nt * sizeof *all + 1);
+  if (!all) return NULL;
+  for (size_t t = 0; t < nt; ++t)
+    for (int k = 0; k < 3; ++k) {
+      uint32_t a = tri[3 * t + k], b = tri[3 * t + (k + 1) % 3];
+      EdgeUse *e = &all[3 * t + k];
+      e->a = a < b ? a : b;
+      e->b = a < b ? b : a;
+      e->opposite[0] = tri[3 * t + (k + 2) % 3];
+      e->count = 1;
+    }
+  qsort(all, 3 * nt, sizeof *all, cmp_edge);
+  size_t out = 0;
+  for (size_t i = 0; i < 3 * nt; ++i) {
+    if (out > 0 && cmp_edge(&all[out - 1], &all[i]) == 0) {
+      if (all[out - 1].count == 2) {
+        free(all);
+        return NULL;
+      }
+      all[out - 1].opposite[1] = all[i].opposite[0];
+      all[out - 1].count = 2;
+    } else {
+      all[out++] = all[i];
+    }
+  }
+  *count = out;
+  return all;
+}
+
+static const EdgeUse *find_edge(const EdgeUse *table, size_t count, uint32_t a, uint32_t b) {
+  EdgeUse key;
+  key.a = a < b ? a : b;
+  key.b = a < b ? b : a;
+  return bsearch(&key, table, count, sizeof *table, cmp_edge);
+}
+
+/* Validity and the Delaunay property; writes the edge table for the later checks. */
+static int check_triangulation(const DelmeshMesh *mesh, size_t n_input, EdgeUse **table,
+                               size_t *table_count, char *why, size_t why_len) {
+  size_t nv = delmesh_mesh_vertex_count(mesh), nt = delmesh_mesh_triangle_count(mesh);
+  const double *xyz = delmesh_mesh_vertices(mesh);
+  const uint32_t *tri = delmesh_mesh_triangles(mesh);
+  const uint32_t *dup = delmesh_mesh_duplicate_of(mesh);
+  double p[3][2], q[2];
+  char *used = calloc(nv + 1, 1);
+  if (!used) return snprintf(why, why_len, "out of memory"), 0;
+  for (size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      if (tri[3 * t + k] >= nv) return free(used), snprintf(why, why_len, "index out of range"), 0;
+      used[tri[3 * t + k]] = 1;
+      vtx(xyz, tri[3 * t + k], p[k]);
+    }
+    if (ref_orient_2(p[0], p[1], p[2]) != 1) {
+      free(used);
+      return snprintf(why, why_len, "triangle %zu not counter-clockwise", t), 0;
+    }
+  }
+  for (size_t i = 0; i < nv; ++i) {
+    int copy = i < n_input && dup && dup[i] != i;
+    if (!used[i] && !copy) return free(used), snprintf(why, why_len, "vertex %zu unused", i), 0;
+  }
+  free(used);
+  *table = edge_table(tri, nt, table_count);
+  if (!*table) return snprintf(why, why_len, "an edge is in more than two triangles"), 0;
+  for (size_t e = 0; e < *table_count; ++e) {
+    const EdgeUse *u = &(*table)[e];
+    if (u->count != 2) continue;
+    /* Counter-clockwise (a, b, opposite[0]) or (b, a, opposite[0]). */
+    vtx(xyz, u->a, p[0]);
+    vtx(xyz, u->b, p[1]);
+    vtx(xyz, u->opposite[0], p[2]);
+    if (ref_orient_2(p[0], p[1], p[2]) < 0) {
+      double t[2] = {p[0][0], p[0][1]};
+      memcpy(p[0], p[1], sizeof t);
+      memcpy(p[1], t, sizeof t);
+    }
+    if (ref_incircle_2(p[0], p[1], p[2], vtx(xyz, u->opposite[1], q)) > 0)
+      return snprintf(why, why_len, "edge (%u, %u) is not locally Delaunay", u->a, u->b), 0;
+  }
+  return 1;
+}
+
+/* Strong admissibility of every sub-edge (see the file comment). */
+static int check_admissible(const DelmeshMesh *mesh, size_t n_input, const EdgeUse *table,
+                            size_t table_count, char *why, size_t why_len) {
+  size_t nv = delmesh_mesh_vertex_count(mesh), ne = delmesh_mesh_edge_count(mesh);
+  const double *xyz = delmesh_mesh_vertices(mesh);
+  const uint32_t *edges = delmesh_mesh_edges(mesh);
+  const uint32_t *dup = delmesh_mesh_duplicate_of(mesh);
+  double a[2], b[2], q[2], c[2], d[2];
+  for (size_t e = 0; e < ne; ++e) {
+    uint32_t i = edges[2 * e], j = edges[2 * e + 1];
+    vtx(xyz, i, a);
+    vtx(xyz, j, b);
+    int empty = 1;
+    for (size_t v = 0; v < nv && empty; ++v) {
+      if (v == i || v == j || (v < n_input && dup && dup[v] != v)) continue;
+      if (ref_small_disk_side(a, b, vtx(xyz, (uint32_t)v, q)) >= 0) empty = 0;
+    }
+    if (empty) continue;
+    const EdgeUse *u = find_edge(table, table_count, i, j);
+    if (!u) return snprintf(why, why_len, "sub-edge %zu (%u, %u) is not a triangle edge", e, i, j), 0;
+    if (u->count == 1) continue; /* a hull edge */
+    vtx(xyz, u->opposite[0], c);
+    vtx(xyz, u->opposite[1], d);
+    int o = ref_orient_2(a, b, c);
+    int side = o > 0 ? ref_incircle_2(a, b, c, d) : ref_incircle_2(b, a, c, d);
+    if (side == 0)
+      return snprintf(why, why_len, "sub-edge %zu (%u, %u) is a diagonal of cocircular points", e, i, j), 0;
+  }
+  return 1;
+}
+
+/* Every input segment is the chain of the next sub-edges of the list, through added points
+ * close to the segment. */
+static int check_union(const DelmeshMesh *mesh, const Case *c, char *why, size_t why_len) {
+  size_t ne = delmesh_mesh_edge_count(mesh), pos = 0;
+  const uint32_t *edges = delmesh_mesh_edges(mesh);
+  const double *xyz = delmesh_mesh_vertices(mesh);
+  for (size_t k = 0; k < c->m; ++k) {
+    uint32_t a = c->seg[2 * k], b = c->seg[2 * k + 1], cur = a;
+    const double *pa = &c->xy[2 * (size_t)a], *pb = &c->xy[2 * (size_t)b];
+    double len2 = (pb[0] - pa[0]) * (pb[0] - pa[0]) + (pb[1] - pa[1]) * (pb[1] - pa[1]);
+    while (cur != b) {
+      if (pos >= ne || edges[2 * pos] != cur)
+        return snprintf(why, why_len, "segment %zu is not a chain of sub-edges", k), 0;
+      cur = edges[2 * pos + 1];
+      pos++;
+      if (cur != b) {
+        double p[2];
+        vtx(xyz, cur, p);
+        double h = fabs((p[0] - pa[0]) * (pb[1] - pa[1]) - (p[1] - pa[1]) * (pb[0] - pa[0])) / len2;
+        if (cur < c->n || h > 1e-12)
+          return snprintf(why, why_len, "segment %zu passes through vertex %u", k, cur), 0;
+      }
+    }
+  }
+  if (pos != ne) return snprintf(why, why_len, "%zu sub-edges belong to no segment", ne - pos), 0;
+  return 1;
+}
+
+static size_t total_ours, total_cgal;
+
+static void run_case(const Case *c) {
+  DelmeshOptions2d options;
+  memset(&options, 0, sizeof options);
+  options.mode = DELMESH_MODE2D_CONFORMING;
+  DelmeshMesh *mesh = NULL;
+  DelmeshStatus s = delmesh_triangulate_2d(c->xy, c->n, c->seg, c->m, &options, &mesh);
+  if (!check_case(s == DELMESH_OK, "%s: delmesh_triangulate_2d (%s)", c->name,
+                  s == DELMESH_OK ? "ok" : delmesh_last_error_message()))
+    return;
+  char why[256] = "";
+  EdgeUse *table = NULL;
+  size_t table_count = 0;
+  int valid = check_triangulation(mesh, c->n, &table, &table_count, why, sizeof why);
+  check_case(valid, "%s: valid Delaunay triangulation%s%s", c->name, valid ? "" : ": ", why);
+  if (valid) {
+    int ok = check_admissible(mesh, c->n, table, table_count, why, sizeof why);
+    check_case(ok, "%s: every sub-edge strongly Delaunay-admissible%s%s", c->name, ok ? "" : ": ", why);
+  }
+  int chained = check_union(mesh, c, why, sizeof why);
+  check_case(chained, "%s: every segment the union of its sub-edges%s%s", c->name, chained ? "" : ": ", why);
+  size_t ours = delmesh_mesh_vertex_count(mesh) - c->n;
+  RefConforming2d cgal;
+  if (ref_cgal_conforming_2d(c->xy, c->n, c->seg, c->m, &cgal, NULL) != 0) {
+    check_case(0, "%s: CGAL conforming Delaunay: %s", c->name, ref_last_error());
+  } else {
+    size_t theirs = cgal.vertex_count - c->n;
+    check_case(cgal.valid, "%s: CGAL's conforming triangulation is valid", c->name);
+    check_note("%-40s inserted points: delmesh %4zu  CGAL %4zu  (sub-edges %zu / %zu)", c->name, ours,
+               theirs, delmesh_mesh_edge_count(mesh), cgal.constrained_edge_count);
+    total_ours += ours;
+    total_cgal += theirs;
+  }
+  free(table);
+  delmesh_mesh_free(mesh);
+}
+
+/* One bad call: the status, *out untouched, and the message containing `word`. */
+static void expect_failure(const char *what, const double *xy, size_t n, const uint32_t *seg,
+                           size_t m, const DelmeshOptions2d *options, DelmeshStatus want,
+                           const char *word) {
+  static double sentinel_storage;
+  DelmeshMesh *sentinel = (DelmeshMesh *)(void *)&sentinel_storage, *out = sentinel;
+  DelmeshStatus s = delmesh_triangulate_2d(xy, n, seg, m, options, &out);
+  const char *message = delmesh_last_error_message();
+  check_case(s == want && out == sentinel && strstr(message, word) != NULL, "%s: status %d, message \"%s\"",
+             what, (int)s, message);
+}
+
+static void error_paths(void) {
+  const double xy[] = {0, 0, 2, 0, 2, 2, 0, 2, 1, 0, 1, 1};
+  const uint32_t cross[] = {4, 2, 1, 5}, through[] = {0, 1}, zero[] = {2, 2}, range[] = {0, 9};
+  DelmeshOptions2d options;
+  memset(&options, 0, sizeof options);
+  options.mode = DELMESH_MODE2D_CONFORMING;
+  expect_failure("crossing segments", xy, 6, cross, 2, &options, DELMESH_ERROR_INVALID_INPUT,
+                 "segments 0 and 1 cross");
+  expect_failure("point on a segment", xy, 6, through, 1, NULL, DELMESH_ERROR_INVALID_INPUT,
+                 "point 4 lies on segment 0");
+  expect_failure("zero-length segment", xy, 6, zero, 1, NULL, DELMESH_ERROR_INVALID_INPUT, "zero length");
+  expect_failure("index out of range", xy, 6, range, 1, NULL, DELMESH_ERROR_INVALID_INPUT, "out of range");
+  double nan_xy[12];
+  memcpy(nan_xy, xy, sizeof nan_xy);
+  nan_xy[7] = NAN;
+  expect_failure("NaN coordinate", nan_xy, 6, through, 1, NULL, DELMESH_ERROR_INVALID_INPUT, "point 3");
+  expect_failure("collinear points", xy, 2, NULL, 0, NULL, DELMESH_ERROR_INVALID_INPUT, "points");
+  expect_failure("NULL segments", xy, 6, NULL, 1, NULL, DELMESH_ERROR_NULL_ARGUMENT, "segments");
+  options.mode = DELMESH_MODE2D_QUALITY;
+  expect_failure("quality mode", xy, 6, NULL, 0, &options, DELMESH_ERROR_INVALID_ARGUMENT, "not yet supported");
+  options.mode = DELMESH_MODE2D_DELAUNAY;
+  options.max_area = -1;
+  expect_failure("negative max_area", xy, 6, NULL, 0, &options, DELMESH_ERROR_INVALID_ARGUMENT, "max_area");
+  options.max_area = 0;
+  DelmeshMesh *mesh = NULL;
+  DelmeshStatus s = delmesh_triangulate_2d(xy, 6, NULL, 0, &options, &mesh);
+  check_case(s == DELMESH_OK && delmesh_mesh_triangle_count(mesh) == 5,
+             "Delaunay mode: 6 points, 5 on the hull, give 5 triangles");
+  delmesh_mesh_free(mesh);
+}
+
+int main(int argc, char **argv) {
+  (void)argc;
+  (void)argv;
+  static Case c;
+  error_paths();
+  struct {
+    int k;
+    double spread;
+  } fans[] = {{2, 20}, {3, 60}, {6, 80}, {8, 360}, {12, 360}, {24, 360}, {5, 10}};
+  for (size_t i = 0; i < sizeof fans / sizeof fans[0]; ++i) {
+    memset(&c, 0, sizeof c);
+    make_fan(&c, fans[i].k, fans[i].spread);
+    run_case(&c);
+  }
+  void (*makers[])(Case *) = {make_zigzag, make_spiral, make_closed_nodes, make_arcs,
+                              make_grid, make_thin_domain, make_thin_rhombus};
+  for (size_t i = 0; i < sizeof makers / sizeof makers[0]; ++i) {
+    memset(&c, 0, sizeof c);
+    makers[i](&c);
+    run_case(&c);
+  }
+  double degrees[] = {1, 2, 5, 10};
+  for (size_t i = 0; i < 4; ++i) {
+    memset(&c, 0, sizeof c);
+    make_tiny_angle(&c, degrees[i]);
+    run_case(&c);
+  }
+  for (int k = 20; k <= 160; k *= 2) {
+    memset(&c, 0, sizeof c);
+    make_star_polygon(&c, k, 0x2d2d + (uint64_t)k);
+    run_case(&c);
+  }
+  check_note("inserted points over all cases: delmesh %zu, CGAL %zu", total_ours, total_cgal);
+  check_case(total_ours <= total_cgal, "delmesh inserts no more points than CGAL over all cases");
+  return check_finish();
+}
