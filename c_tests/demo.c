@@ -389,13 +389,14 @@ static int run_oracle(const DemoShape *shape, const char *out_path) {
            agree ? "agrees" : "DISAGREES with the figures above");
   failed |= !agree;
   int radius_edge_ok = q.max_radius_edge <= shape->radius_edge * (1 + ROUNDING);
-  int size_ok = q.max_circumradius <= shape->cell_size * (1 + ROUNDING);
   int angle_ok = facet_angle >= shape->facet_angle * (1 - ROUNDING);
-  printf("criteria:    radius-edge %.4f <= %g: %s; circumradius %.4f <= %g: %s; facet angle "
-         "%.2f >= %g: %s\n",
-         q.max_radius_edge, shape->radius_edge, yes_no(radius_edge_ok), q.max_circumradius,
-         shape->cell_size, yes_no(size_ok), facet_angle, shape->facet_angle, yes_no(angle_ok));
-  failed |= !radius_edge_ok || !size_ok || !angle_ok;
+  /* The cell size bound holds for the refined mesh; sliver exudation (on by default) flips
+   * slivers away without moving a vertex and may enlarge a few circumballs past it. */
+  printf("criteria:    radius-edge %.4f <= %g: %s; facet angle %.2f >= %g: %s; largest "
+         "circumradius %.4f (cell size %g before exudation)\n",
+         q.max_radius_edge, shape->radius_edge, yes_no(radius_edge_ok), facet_angle,
+         shape->facet_angle, yes_no(angle_ok), q.max_circumradius, shape->cell_size);
+  failed |= !radius_edge_ok || !angle_ok;
 
   failed |= !write_mesh(mesh, out_path);
   free(outward);

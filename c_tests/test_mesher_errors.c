@@ -121,6 +121,11 @@ static void mesher_errors(void) {
   expect(delmesh_mesher_set_cell_radius_edge_ratio(m, 1.5), DELMESH_ERROR_INVALID_ARGUMENT, "radius-edge ratio 1.5", "terminate");
   expect(delmesh_mesher_set_sizing_field(m, 7, size_field, NULL), DELMESH_ERROR_INVALID_ARGUMENT, "sizing field for criterion 7", "7");
   expect(delmesh_mesher_set_sizing_field(m, DELMESH_SIZING_CELL_SIZE, NULL, NULL), DELMESH_ERROR_NULL_ARGUMENT, "NULL sizing field", "`f`");
+  expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_PERTURB, 0), DELMESH_ERROR_INVALID_ARGUMENT, "perturbation (not available)", "not available");
+  expect(delmesh_mesher_set_optimization(m, 64, 0), DELMESH_ERROR_INVALID_ARGUMENT, "unknown optimization flag", "unknown");
+  expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_EXUDE, -1), DELMESH_ERROR_INVALID_ARGUMENT, "negative time limit", "time limit");
+  expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_EXUDE, NAN), DELMESH_ERROR_INVALID_ARGUMENT, "NaN time limit", "time limit");
+  expect(delmesh_mesher_set_optimization(NULL, 0, 0), DELMESH_ERROR_NULL_ARGUMENT, "optimization, NULL mesher", "`m`");
 
   DelmeshDomain *d = NULL;
   DelmeshMesh *out = SENTINEL_MESH;

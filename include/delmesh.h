@@ -50,6 +50,18 @@
 #define DELMESH_ABI_VERSION 1
 
 /*
+ `delmesh_mesher_set_optimization` flag: sliver exudation (vertex weights chosen to flip
+ slivers away; no point added or moved). On by default.
+ */
+#define DELMESH_OPTIMIZE_EXUDE 1
+
+/*
+ `delmesh_mesher_set_optimization` flag: vertex perturbation (not available yet: setting it
+ is `DELMESH_ERROR_INVALID_ARGUMENT`).
+ */
+#define DELMESH_OPTIMIZE_PERTURB 2
+
+/*
  Progress phase: the initial surface points are inserted.
  */
 #define DELMESH_PHASE_INITIAL 0
@@ -598,7 +610,8 @@ void delmesh_mesher_free(struct DelmeshMesher *m);
 enum DelmeshStatus delmesh_mesher_new(struct DelmeshMesher **out);
 
 /*
- Meshes domain `d` with the criteria of `m`: a tetrahedral mesh of every subdomain
+ Meshes domain `d` with the criteria of `m`, then runs the optimization passes
+ (`delmesh_mesher_set_optimization`; by default sliver exudation): a tetrahedral mesh of every subdomain
  (labels > 0), the surface and interface facets with their label pairs, vertex
  dimensions 2 (surface) and 3 (volume); only used vertices, numbered compactly. The same
  mesher and domain give bit-identical arrays.
@@ -683,6 +696,22 @@ enum DelmeshStatus delmesh_mesher_set_facet_topology(struct DelmeshMesher *m,
  `m` is NULL or a live mesher.
  */
 enum DelmeshStatus delmesh_mesher_set_max_vertices(struct DelmeshMesher *m, size_t max_vertices);
+
+/*
+ Selects the optimization passes run after refinement: `flags` is 0 (none) or
+ DELMESH_OPTIMIZE_EXUDE (the default); `time_limit_seconds` bounds each pass (0: no limit;
+ a pass stopped by it gives a result that depends on the machine's speed). Passes keep the
+ boundary and interface facets and every subdomain's volume exactly.
+
+ Errors: NULL `m`; DELMESH_OPTIMIZE_PERTURB (not available yet) or an unknown flag, a
+ negative or NaN time limit -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_optimization(struct DelmeshMesher *m,
+                                                   int32_t flags,
+                                                   double time_limit_seconds);
 
 /*
  Sets (or, with a NULL `f`, removes) the progress callback, called with `user_data` from

@@ -192,6 +192,18 @@ impl Criteria {
         Ok(bad(worst))
     }
 
+    /// Whether a cell meets the radius-edge bound (when set).
+    pub fn cell_shape_holds(&self, tet: [&Point; 4], center: &Point) -> bool {
+        let Some(bound2) = self.cell_ratio2 else {
+            return true;
+        };
+        let shortest2 = (0..4)
+            .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+            .map(|(i, j)| dist2(tet[i], tet[j]))
+            .fold(f64::INFINITY, f64::min);
+        dist2(center, tet[0]) / shortest2 <= bound2
+    }
+
     /// The badness of a cell `tet` with circumcenter `center` in subdomain `label`.
     pub fn cell(&self, tet: [&Point; 4], center: &Point, label: i32) -> Result<Option<Badness>> {
         let radius2 = dist2(center, tet[0]);

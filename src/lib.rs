@@ -9,6 +9,7 @@
 //! - [`criteria`]: facet and cell bounds, constant or sizing fields;
 //! - [`refine`]: oracle-driven Delaunay refinement (restricted Delaunay, refinement levels);
 //! - [`mesh2d`]: planar Delaunay and conforming (Pébay) triangulations;
+//! - [`optimize`]: sliver removal after refinement (exudation);
 //! - [`mesh`]: the result type handed to users, and its [`quality`] report;
 //! - `ffi`: the C ABI, a panic boundary around every exported function.
 
@@ -19,6 +20,7 @@ pub mod ffi;
 pub mod io;
 pub mod mesh;
 pub mod mesh2d;
+pub mod optimize;
 pub mod predicates;
 pub mod quality;
 pub mod refine;

@@ -6,8 +6,9 @@ use super::domain::DelmeshDomain;
 use super::mesh::DelmeshMesh;
 use super::{args, call, DelmeshStatus, Failure};
 use crate::criteria::{Criteria, Which};
+use crate::optimize::{optimize, Optimization};
 use crate::predicates::Point;
-use crate::refine::{refine, Limits, Progress};
+use crate::refine::{refine_complex, Limits, Progress};
 
 /// `delmesh_mesher_set_sizing_field`: the field replaces the facet size bound.
 pub const DELMESH_SIZING_FACET_SIZE: i32 = 1;
@@ -15,6 +16,13 @@ pub const DELMESH_SIZING_FACET_SIZE: i32 = 1;
 pub const DELMESH_SIZING_FACET_DISTANCE: i32 = 2;
 /// `delmesh_mesher_set_sizing_field`: the field replaces the cell size bound.
 pub const DELMESH_SIZING_CELL_SIZE: i32 = 3;
+
+/// `delmesh_mesher_set_optimization` flag: sliver exudation (vertex weights chosen to flip
+/// slivers away; no point added or moved). On by default.
+pub const DELMESH_OPTIMIZE_EXUDE: i32 = 1;
+/// `delmesh_mesher_set_optimization` flag: vertex perturbation (not available yet: setting it
+/// is `DELMESH_ERROR_INVALID_ARGUMENT`).
+pub const DELMESH_OPTIMIZE_PERTURB: i32 = 2;
 
 /// Progress phase: the initial surface points are inserted.
 pub const DELMESH_PHASE_INITIAL: i32 = 0;
@@ -54,6 +62,7 @@ pub type DelmeshProgressFn =
 /// mesher; `delmesh_mesher_run` only reads it.
 pub struct DelmeshMesher {
     criteria: Criteria,
+    optimization: Optimization,
     max_vertices: usize,
     progress: Option<(
         unsafe extern "C" fn(*const DelmeshProgress, *mut c_void) -> i32,
@@ -76,6 +85,7 @@ pub unsafe extern "C" fn delmesh_mesher_new(out: *mut *mut DelmeshMesher) -> Del
         let out = unsafe { args::out_param(out, "out") }?;
         let mesher = DelmeshMesher {
             criteria: Criteria::new(),
+            optimization: Optimization::default(),
             max_vertices: 0,
             progress: None,
         };
@@ -243,6 +253,46 @@ pub unsafe extern "C" fn delmesh_mesher_set_sizing_field(
     unsafe { with_mesher("delmesh_mesher_set_sizing_field", m, set) }
 }
 
+/// Selects the optimization passes run after refinement: `flags` is 0 (none) or
+/// DELMESH_OPTIMIZE_EXUDE (the default); `time_limit_seconds` bounds each pass (0: no limit;
+/// a pass stopped by it gives a result that depends on the machine's speed). Passes keep the
+/// boundary and interface facets and every subdomain's volume exactly.
+///
+/// Errors: NULL `m`; DELMESH_OPTIMIZE_PERTURB (not available yet) or an unknown flag, a
+/// negative or NaN time limit -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+///
+/// # Safety
+/// `m` is NULL or a live mesher.
+#[no_mangle]
+pub unsafe extern "C" fn delmesh_mesher_set_optimization(
+    m: *mut DelmeshMesher,
+    flags: i32,
+    time_limit_seconds: f64,
+) -> DelmeshStatus {
+    let set = |m: &mut DelmeshMesher| {
+        let invalid =
+            |message: String| Failure::new(DelmeshStatus::DELMESH_ERROR_INVALID_ARGUMENT, message);
+        if flags & DELMESH_OPTIMIZE_PERTURB != 0 {
+            return Err(invalid(
+                "DELMESH_OPTIMIZE_PERTURB: vertex perturbation is not available yet".into(),
+            ));
+        }
+        if flags & !DELMESH_OPTIMIZE_EXUDE != 0 {
+            return Err(invalid(format!("flags = {flags:#x} has unknown bits")));
+        }
+        if !(time_limit_seconds >= 0.0 && time_limit_seconds.is_finite()) {
+            return Err(invalid(format!(
+                "time limit {time_limit_seconds} must be finite and non-negative (0: none)"
+            )));
+        }
+        m.optimization.exude = flags & DELMESH_OPTIMIZE_EXUDE != 0;
+        m.optimization.exude_options.time_limit = (time_limit_seconds > 0.0)
+            .then(|| std::time::Duration::from_secs_f64(time_limit_seconds));
+        Ok(())
+    };
+    unsafe { with_mesher("delmesh_mesher_set_optimization", m, set) }
+}
+
 /// Largest number of vertices a run may create; past it the run stops with
 /// `DELMESH_ERROR_LIMIT`. 0 (the default) means no limit. Errors: NULL `m`.
 ///
@@ -282,7 +332,8 @@ pub unsafe extern "C" fn delmesh_mesher_set_progress(
     }
 }
 
-/// Meshes domain `d` with the criteria of `m`: a tetrahedral mesh of every subdomain
+/// Meshes domain `d` with the criteria of `m`, then runs the optimization passes
+/// (`delmesh_mesher_set_optimization`; by default sliver exudation): a tetrahedral mesh of every subdomain
 /// (labels > 0), the surface and interface facets with their label pairs, vertex
 /// dimensions 2 (surface) and 3 (volume); only used vertices, numbered compactly. The same
 /// mesher and domain give bit-identical arrays.
@@ -327,7 +378,9 @@ pub unsafe extern "C" fn delmesh_mesher_run(
             max_vertices: m.max_vertices,
             progress: Some(&mut report),
         };
-        *out = DelmeshMesh::into_raw(refine(&d.domain, &m.criteria, limits)?);
+        let mut labeled = refine_complex(&d.domain, &m.criteria, limits)?.into_labeled();
+        optimize(&mut labeled, &m.criteria, &m.optimization)?;
+        *out = DelmeshMesh::into_raw(labeled.to_mesh());
         Ok(())
     })
 }

@@ -115,6 +115,26 @@ impl<'a> Complex<'a> {
         self.tri.tets().is_live(t) && self.stamp[t as usize] == stamp
     }
 
+    /// Labels per tetrahedron slot.
+    pub fn labels(&self) -> &[i32] {
+        &self.label
+    }
+
+    /// Dimensions per vertex.
+    pub fn dimensions(&self) -> &[i8] {
+        &self.dimension
+    }
+
+    /// The triangulation with its labels and vertex dimensions, for the optimization passes
+    /// (the surface balls and circumcenters are dropped: they belong to refinement).
+    pub fn into_labeled(self) -> super::Labeled {
+        super::Labeled {
+            tri: self.tri,
+            label: self.label,
+            dimension: self.dimension,
+        }
+    }
+
     pub fn dimension(&self, v: u32) -> i8 {
         self.dimension[v as usize]
     }

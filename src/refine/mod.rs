@@ -20,6 +20,7 @@ mod output;
 mod queue;
 
 pub use complex::Complex;
+pub use output::Labeled;
 
 use crate::criteria::Criteria;
 use crate::domain::{initial_points, Domain};

@@ -74,6 +74,9 @@ impl Triangulation<'static> {
         self.points.push(q);
         self.order.push(p);
         self.state.push(PointState::Pending);
+        if self.is_regular() {
+            self.weights.push(0.0);
+        }
         if self.tets.is_live(near) {
             self.hint = near;
         }
@@ -92,7 +95,7 @@ impl Triangulation<'static> {
                 }
             }
         };
-        self.find_cavity(start, p);
+        self.find_cavity(&[start], p);
         // A copy of a vertex lies on the spheres of its tetrahedra: the perturbation may put
         // some of them in conflict, so the cavity's vertices are checked for copies.
         let copy = self.scratch.cavity.iter().find_map(|&t| {
@@ -108,14 +111,87 @@ impl Triangulation<'static> {
         Ok(Conflicts::Cavity)
     }
 
+    /// Turns the triangulation into the regular triangulation of its vertices with weight 0
+    /// (the same triangulation), so that vertices can be re-weighted (sliver exudation).
+    pub fn make_regular(&mut self) {
+        if self.weights.is_empty() {
+            self.weights = vec![0.0; self.points.len()];
+        }
+    }
+
+    /// The weight of vertex `v` (0 in a Delaunay triangulation).
+    pub fn weight(&self, v: u32) -> f64 {
+        self.weights.get(v as usize).copied().unwrap_or(0.0)
+    }
+
+    /// Marks the cavity of raising the weight of vertex `v`, a vertex of tetrahedron `t`, to
+    /// `w` (above its weight; regular triangulations only): the tetrahedra incident to `v` and
+    /// every tetrahedron in conflict with the heavier copy of `v`. [`Self::cavity_boundary`]
+    /// and [`Self::cavity`] then describe the change; [`Self::commit_reweight`] applies it,
+    /// [`Self::abandon`] forgets it.
+    pub fn find_reweight_conflicts(&mut self, v: u32, t: u32, w: f64) -> Result<()> {
+        let heavier = w > self.weight(v);
+        if !self.is_regular() || !heavier || !self.tets.vertices(t).contains(&v) {
+            return Err(Error::internal(format!(
+                "cannot raise the weight of vertex {v} to {w} from tetrahedron {t}"
+            )));
+        }
+        let star = self.star(v, t);
+        let q = self.points.len() as u32;
+        self.points.push(self.points[v as usize]);
+        self.weights.push(w);
+        self.order.push(q);
+        self.state.push(PointState::Pending);
+        self.find_cavity(&star, q);
+        Ok(())
+    }
+
+    /// Applies the pending re-weighting of `v`: the heavier copy replaces it (`v` becomes
+    /// hidden); returns the copy's vertex id.
+    pub fn commit_reweight(&mut self, v: u32) -> Result<u32> {
+        let q = self.commit()?;
+        self.state[v as usize] = PointState::Hidden;
+        Ok(q)
+    }
+
+    /// The tetrahedra incident to vertex `v`, found from `t` (one of them) across the facets
+    /// that contain `v`.
+    pub fn star(&self, v: u32, t: u32) -> Vec<u32> {
+        let mut star = vec![t];
+        let mut k = 0;
+        while k < star.len() {
+            let s = star[k];
+            k += 1;
+            for (i, &x) in self.tets.vertices(s).iter().enumerate() {
+                let u = self.tets.neighbor(s, i);
+                if x != v && !star.contains(&u) {
+                    star.push(u);
+                }
+            }
+        }
+        star
+    }
+
     /// The tetrahedra in conflict with the pending point.
     pub fn cavity(&self) -> &[u32] {
         &self.scratch.cavity
     }
 
+    /// Whether tetrahedron `t` is in the pending cavity.
+    pub fn in_cavity(&self, t: u32) -> bool {
+        self.marked_in_conflict(t)
+    }
+
     /// The facets `4*t+j` of the tetrahedra outside the cavity that bound it.
     pub fn cavity_boundary(&self) -> impl Iterator<Item = u32> + '_ {
         self.scratch.boundary.iter().map(|&(_, outer, _)| outer)
+    }
+
+    /// The tetrahedra a commit would create, as (vertices, the outer facet `4*t+j` it is
+    /// glued to, the local position of the new vertex); [`Self::created`] lists them in
+    /// this order after the commit.
+    pub fn cavity_cone(&self) -> &[([u32; 4], u32, u8)] {
+        &self.scratch.boundary
     }
 
     /// Inserts the pending point; returns its vertex id.
@@ -141,6 +217,9 @@ impl Triangulation<'static> {
         self.points.pop();
         self.order.pop();
         self.state.pop();
+        if self.weights.len() > self.points.len() {
+            self.weights.pop();
+        }
     }
 }
 

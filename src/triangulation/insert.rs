@@ -110,7 +110,7 @@ impl Triangulation<'_> {
             Located::Duplicate(w) => PointState::Duplicate(self.input_index(w)),
             Located::Hidden => PointState::Hidden,
             Located::Conflict(t0) => {
-                self.find_cavity(t0, p);
+                self.find_cavity(&[t0], p);
                 self.fill_cavity(p)?;
                 PointState::Inserted
             }
@@ -238,16 +238,18 @@ impl Triangulation<'_> {
         [p[0], p[1], p[2], self.weights[v as usize]]
     }
 
-    /// Search of the tetrahedra in conflict with `p`, starting from `t0`
-    /// (in conflict). Fills `scratch.cavity` and `scratch.boundary`.
-    pub(super) fn find_cavity(&mut self, t0: u32, p: u32) {
+    /// Search of the tetrahedra in conflict with `p`, starting from `seeds` (in conflict,
+    /// forming a connected set). Fills `scratch.cavity` and `scratch.boundary`.
+    pub(super) fn find_cavity(&mut self, seeds: &[u32], p: u32) {
         let mut s = std::mem::take(&mut self.scratch);
         s.cavity.clear();
         s.boundary.clear();
         s.stack.clear();
-        self.tets.mark[t0 as usize] = IN_CONFLICT;
-        s.cavity.push(t0);
-        s.stack.push(t0);
+        for &t0 in seeds {
+            self.tets.mark[t0 as usize] = IN_CONFLICT;
+            s.cavity.push(t0);
+            s.stack.push(t0);
+        }
         while let Some(t) = s.stack.pop() {
             for i in 0..4 {
                 let facet = self.tets.glued(t, i);
@@ -273,6 +275,11 @@ impl Triangulation<'_> {
             }
         }
         self.scratch = s;
+    }
+
+    /// Whether tetrahedron `t` is in the cavity under way.
+    pub(super) fn marked_in_conflict(&self, t: u32) -> bool {
+        self.tets.mark[t as usize] == IN_CONFLICT
     }
 
     /// Clears the marks [`Self::find_cavity`] left (on the cavity and its outer neighbours).
