@@ -10,7 +10,10 @@ use delmesh::mesh2d::classify::{classify, Theta2};
 use delmesh::mesh2d::cloud::Cloud;
 use delmesh::mesh2d::delaunay::Delaunay2d;
 use delmesh::mesh2d::exact::incircle_sos;
-use delmesh::mesh2d::{conforming_2d, delaunay_2d, validate_mesh, Conforming2d};
+use delmesh::mesh2d::subdivide::Algorithm;
+use delmesh::mesh2d::{
+    conforming_2d, conforming_2d_with, delaunay_2d, validate_mesh, Conforming2d,
+};
 use delmesh::predicates::{incircle_coplanar_sos, orient2d, Sign};
 use delmesh::Mesh;
 use num_rational::BigRational;
@@ -129,21 +132,31 @@ fn assert_union(mesh: &Mesh, xy: &[[f64; 2]], segments: &[[u32; 2]], case: &str)
 }
 
 fn conform(xy: &[[f64; 2]], segments: &[[u32; 2]], case: &str) -> Conforming2d {
+    conform_with(xy, segments, case, Algorithm::ClosedNodes)
+}
+
+fn conform_with(
+    xy: &[[f64; 2]],
+    segments: &[[u32; 2]],
+    case: &str,
+    algorithm: Algorithm,
+) -> Conforming2d {
     let flat_segments: Vec<u32> = segments.iter().flatten().copied().collect();
-    let out = conforming_2d(&flat(xy), &flat_segments).unwrap_or_else(|e| panic!("{case}: {e}"));
+    let out = conforming_2d_with(&flat(xy), &flat_segments, algorithm)
+        .unwrap_or_else(|e| panic!("{case}: {e}"));
     validate_mesh(&out.mesh).unwrap_or_else(|e| panic!("{case}: {e}"));
     assert_admissible(&out.mesh, case);
     assert_union(&out.mesh, xy, segments, case);
-    let again = conforming_2d(&flat(xy), &flat_segments).expect("second run");
+    let again = conforming_2d_with(&flat(xy), &flat_segments, algorithm).expect("second run");
     assert_eq!(out.mesh, again.mesh, "{case}: not deterministic");
     eprintln!(
-        "{case}: {} points, {} segments -> {} inserted ({} projections, {} cleanings, {} closed nodes), degradation worst {:.1} mean {:.2}",
+        "{case} ({algorithm:?}): {} points, {} segments -> {} inserted ({} projections, {} cleanings, {} nodes), degradation worst {:.1} mean {:.2}",
         xy.len(),
         segments.len(),
         out.inserted,
         out.subdivision.projections,
         out.subdivision.cleanings,
-        out.subdivision.closed_nodes_cleaned,
+        out.subdivision.nodes_cleaned,
         out.degradation.worst,
         out.degradation.mean
     );
@@ -446,7 +459,7 @@ fn fans_of_acute_edges_at_one_point() {
             &format!("fan of {k} edges over {spread} degrees"),
         );
         if spread >= 360.0 {
-            assert!(out.subdivision.closed_nodes_cleaned >= 1);
+            assert!(out.subdivision.nodes_cleaned >= 1);
         }
     }
 }
@@ -467,7 +480,7 @@ fn chains_of_acute_angles() {
         .collect();
     let out = conform(&xy, &polyline(xy.len(), false), "zigzag");
     assert!(out.inserted > 0);
-    // A spiral of acute turns.
+    // A spiral of sharp turns.
     let xy: Vec<[f64; 2]> = (0..30)
         .map(|i| {
             let a = 1.2 * i as f64;
@@ -475,7 +488,7 @@ fn chains_of_acute_angles() {
             [r * a.cos(), r * a.sin()]
         })
         .collect();
-    conform(&xy, &polyline(xy.len(), false), "acute spiral");
+    conform(&xy, &polyline(xy.len(), false), "spiral");
 }
 
 #[test]
@@ -492,7 +505,7 @@ fn closed_nodes() {
         }
     }
     let out = conform(&xy, &segments, "two closed nodes");
-    assert_eq!(out.subdivision.closed_nodes_cleaned, 2);
+    assert_eq!(out.subdivision.nodes_cleaned, 2);
 }
 
 #[test]
@@ -623,4 +636,34 @@ fn expect_copy(copies: &[f64]) {
     assert!(err.message.contains("zero length"), "{}", err.message);
     let out = conforming_2d(copies, &[3, 1, 0, 2]).expect("copies merged");
     assert_eq!(out.mesh.edges[..2], [0, 1]);
+}
+
+#[test]
+fn algorithm_3_1_on_the_paper_situations() {
+    for (k, spread) in [(3, 60.0), (6, 80.0), (12, 360.0), (5, 10.0)] {
+        let (xy, segments) = fan(k, spread);
+        let out = conform_with(
+            &xy,
+            &segments,
+            &format!("fan {k}/{spread}"),
+            Algorithm::Brutal,
+        );
+        // Every edge of these fans is already admissible, or a cut at the centre is made.
+        assert!(
+            out.inserted == 0 || out.subdivision.nodes_cleaned >= 1,
+            "fan {k}/{spread}"
+        );
+    }
+    let xy: Vec<[f64; 2]> = (0..12)
+        .map(|i| {
+            let k = (i / 2) as f64;
+            if i % 2 == 0 {
+                [0.0, 0.3 * k]
+            } else {
+                [3.0, 0.3 * k + 1.0]
+            }
+        })
+        .collect();
+    let out = conform_with(&xy, &polyline(xy.len(), false), "zigzag", Algorithm::Brutal);
+    assert!(out.subdivision.nodes_cleaned >= 1);
 }

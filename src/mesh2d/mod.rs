@@ -10,7 +10,7 @@
 //! - [`subdivide`]: §3 — Algorithm 3.2 (`projection`, `nettoyage` at closed nodes, open and
 //!   closed nodes of Definition 3.1, edges by decreasing count of points in their small disk,
 //!   a bucket grid for the small-disk queries of §3.3), with a better `nettoyage` distance than
-//!   the paper's `d_i / 2`;
+//!   the paper's `d_i / 2`; Algorithm 3.1 as an option;
 //! - [`delaunay`]: the Delaunay triangulation itself (§1.2), Bowyer–Watson with a walk, ties
 //!   broken by a symbolic perturbation so that the output is a function of the point set.
 //!
@@ -32,7 +32,7 @@ use crate::mesh::{Mesh, DIMENSION_UNKNOWN};
 use crate::predicates::{orient2d, Sign};
 use cloud::Cloud;
 use delaunay::{first_duplicates, Delaunay2d};
-use subdivide::{Subdivision, SubdivisionReport};
+use subdivide::{Algorithm, Subdivision, SubdivisionReport};
 
 /// Vertex dimension of an input point at a segment end (a corner).
 pub const DIMENSION_CORNER: i8 = 0;
@@ -79,12 +79,21 @@ pub fn delaunay_2d(xy: &[f64]) -> Result<Mesh> {
 /// sub-segment is strongly Delaunay-admissible, then the augmented point set is triangulated.
 /// `Mesh::edges` lists the sub-segments, by input segment and along it.
 pub fn conforming_2d(xy: &[f64], segments: &[u32]) -> Result<Conforming2d> {
+    conforming_2d_with(xy, segments, Algorithm::ClosedNodes)
+}
+
+/// [`conforming_2d`] with the choice of Pébay's algorithm (3.2 by default, 3.1 as an option).
+pub fn conforming_2d_with(
+    xy: &[f64],
+    segments: &[u32],
+    algorithm: Algorithm,
+) -> Result<Conforming2d> {
     let points = input::points(xy)?;
     let first = first_duplicates(&points);
     let cloud = cloud_of(&points, &first, segments.len() / 2);
     let (segs, origin) = input::segments(segments, &points, &first, &cloud)?;
     let limit = ADDED_POINTS_PER_ITEM.saturating_mul(points.len() + segs.len());
-    let mut sub = Subdivision::new(cloud, &segs, limit);
+    let mut sub = Subdivision::new(cloud, &segs, limit, algorithm);
     sub.run()?;
     let all = sub.cloud.points.clone();
     let dt = Delaunay2d::new(&all)?;

@@ -35,6 +35,17 @@ use super::exact::dot_sign;
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::Sign;
 
+/// Which of Pébay's algorithms runs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Algorithm {
+    /// Algorithm 3.1: `nettoyage` at every end of a non-admissible edge where two edges form
+    /// an acute angle, on the edges there that form one.
+    Brutal,
+    /// Algorithm 3.2: `nettoyage` at closed nodes only, on the whole node.
+    #[default]
+    ClosedNodes,
+}
+
 /// A constraint sub-edge.
 #[derive(Clone, Copy, Debug)]
 struct Edge {
@@ -54,8 +65,8 @@ pub struct SubdivisionReport {
     pub cleanings: usize,
     /// Projections replaced by a midpoint (rounding would have kept the point in a disk).
     pub midpoint_fallbacks: usize,
-    /// Closed nodes cleaned.
-    pub closed_nodes_cleaned: usize,
+    /// Nodes cleaned (closed nodes for Algorithm 3.2).
+    pub nodes_cleaned: usize,
     /// Full re-classification passes.
     pub rounds: usize,
 }
@@ -68,13 +79,14 @@ pub struct Subdivision {
     incident: Vec<Vec<u32>>,
     pub report: SubdivisionReport,
     limit: usize,
+    algorithm: Algorithm,
 }
 
 impl Subdivision {
     /// `cloud` holds `S`; `segments` are pairs of distinct point indices forming a valid
     /// constraint field (no crossing, no point on an open segment). At most `limit` points are
     /// added.
-    pub fn new(cloud: Cloud, segments: &[[u32; 2]], limit: usize) -> Self {
+    pub fn new(cloud: Cloud, segments: &[[u32; 2]], limit: usize, algorithm: Algorithm) -> Self {
         let mut incident = vec![Vec::new(); cloud.points.len()];
         let edges = segments
             .iter()
@@ -96,10 +108,11 @@ impl Subdivision {
             incident,
             report: SubdivisionReport::default(),
             limit,
+            algorithm,
         }
     }
 
-    /// Runs Algorithm 3.2 to completion: afterwards every live sub-edge is strongly
+    /// Runs the algorithm to completion: afterwards every live sub-edge is strongly
     /// Delaunay-admissible relative to all points of the cloud.
     pub fn run(&mut self) -> Result<()> {
         loop {
@@ -108,7 +121,7 @@ impl Subdivision {
             if bad.is_empty() {
                 return Ok(());
             }
-            self.clean_closed_nodes(&bad)?;
+            self.clean_nodes(&bad)?;
             let mut heap: BinaryHeap<(usize, std::cmp::Reverse<u32>)> = BinaryHeap::new();
             for e in bad {
                 let count = self.disk_points(e).len();
@@ -208,8 +221,32 @@ impl Subdivision {
         false
     }
 
-    /// `nettoyage` at every closed nodal centre that ends a non-admissible edge of `bad`.
-    fn clean_closed_nodes(&mut self, bad: &[u32]) -> Result<()> {
+    /// The edges to cut by `nettoyage` at `p`, if any: the whole node at a closed nodal
+    /// centre (Algorithm 3.2), or every edge at an acute angle with another (Algorithm 3.1).
+    fn edges_to_clean(&self, p: u32) -> Vec<(u32, u32)> {
+        let node = self.node(p);
+        match self.algorithm {
+            Algorithm::ClosedNodes if self.is_closed_node(p) => node,
+            Algorithm::ClosedNodes => Vec::new(),
+            Algorithm::Brutal => {
+                let centre = self.point(p);
+                let acute = |u: usize| {
+                    (0..node.len()).any(|v| {
+                        v != u
+                            && dot_sign(&self.point(node[u].1), &self.point(node[v].1), &centre)
+                                == Sign::Positive
+                    })
+                };
+                (0..node.len())
+                    .filter(|&u| acute(u))
+                    .map(|u| node[u])
+                    .collect()
+            }
+        }
+    }
+
+    /// `nettoyage` at every end of a non-admissible edge of `bad` that calls for it.
+    fn clean_nodes(&mut self, bad: &[u32]) -> Result<()> {
         let mut centres: Vec<u32> = bad
             .iter()
             .flat_map(|&e| [self.edges[e as usize].a, self.edges[e as usize].b])
@@ -217,17 +254,17 @@ impl Subdivision {
         centres.sort_unstable();
         centres.dedup();
         for p in centres {
-            if self.is_closed_node(p) {
-                self.clean_node(p)?;
+            let edges = self.edges_to_clean(p);
+            if !edges.is_empty() {
+                self.clean_node(p, edges)?;
             }
         }
         Ok(())
     }
 
-    /// `nettoyage(P*, M, d)` on every edge of the node at `p`, with the `d` of the module
-    /// documentation.
-    fn clean_node(&mut self, p: u32) -> Result<()> {
-        let node = self.node(p);
+    /// `nettoyage(P*, M, d)` on the given edges at `p` (edge id, far end), with the `d` of the
+    /// module documentation.
+    fn clean_node(&mut self, p: u32, node: Vec<(u32, u32)>) -> Result<()> {
         let centre = self.point(p);
         let mut shortest = f64::INFINITY;
         let mut d_max = f64::INFINITY;
@@ -264,7 +301,7 @@ impl Subdivision {
             self.split(e, m)?;
             self.report.cleanings += 1;
         }
-        self.report.closed_nodes_cleaned += 1;
+        self.report.nodes_cleaned += 1;
         Ok(())
     }
 
