@@ -74,34 +74,48 @@ impl Quality {
     }
 }
 
-/// Dihedral angles, radius-edge and radius ratios of the tetrahedron `p` (either orientation).
-pub fn tetrahedron(p: [P; 4]) -> TetQuality {
-    // Outward-or-inward normals of the four faces, each opposite vertex i, all the same way.
-    let normal = |i: usize| {
+/// The outward normals of the four faces of `p` (face `i` opposite vertex `i`), either
+/// orientation of `p`.
+fn outward_normals(p: &[P; 4]) -> [P; 4] {
+    std::array::from_fn(|i| {
         let [a, b, c] = [(i + 1) % 4, (i + 2) % 4, (i + 3) % 4].map(|k| p[k]);
-        cross(&sub(&b, &a), &sub(&c, &a))
-    };
-    let n: [P; 4] = std::array::from_fn(|i| {
-        let v = normal(i);
-        // Orient every normal away from the opposite vertex.
-        if dot(&v, &sub(&p[i], &p[(i + 1) % 4])) > 0.0 {
+        let v = cross(&sub(&b, &a), &sub(&c, &a));
+        if dot(&v, &sub(&p[i], &a)) > 0.0 {
             v.map(|x| -x)
         } else {
             v
         }
-    });
-    let (mut min_dihedral, mut max_dihedral) = (180.0f64, 0.0f64);
+    })
+}
+
+/// The smallest and largest cosine of the angle between two outward face normals: faces `i`
+/// and `j` meet at the edge opposite them, where the dihedral angle is `acos(-cos)` (so the
+/// smallest cosine gives the smallest dihedral angle).
+fn normal_cosines(n: &[P; 4]) -> (f64, f64) {
+    let (mut lo, mut hi) = (1.0f64, -1.0f64);
     for i in 0..4 {
         for j in i + 1..4 {
-            // Faces i and j meet at the edge opposite them; the dihedral angle there is
-            // pi minus the angle between their outward normals.
             let c = dot(&n[i], &n[j]) / (norm(&n[i]) * norm(&n[j]));
-            let angle = 180.0 - c.clamp(-1.0, 1.0).acos().to_degrees();
-            let angle = if angle.is_nan() { 0.0 } else { angle };
-            min_dihedral = min_dihedral.min(angle);
-            max_dihedral = max_dihedral.max(angle);
+            // A flat tetrahedron (NaN) has a zero dihedral angle.
+            let c = if c.is_nan() { -1.0 } else { c.clamp(-1.0, 1.0) };
+            lo = lo.min(c);
+            hi = hi.max(c);
         }
     }
+    (lo, hi)
+}
+
+/// The smallest dihedral angle of `p`, degrees (one `acos`).
+pub fn min_dihedral(p: [P; 4]) -> f64 {
+    let (lo, _) = normal_cosines(&outward_normals(&p));
+    (-lo).acos().to_degrees()
+}
+
+/// Dihedral angles, radius-edge and radius ratios of the tetrahedron `p` (either orientation).
+pub fn tetrahedron(p: [P; 4]) -> TetQuality {
+    let n = outward_normals(&p);
+    let (lo, hi) = normal_cosines(&n);
+    let (min_dihedral, max_dihedral) = ((-lo).acos().to_degrees(), (-hi).acos().to_degrees());
     let volume = dot(
         &sub(&p[1], &p[0]),
         &cross(&sub(&p[2], &p[0]), &sub(&p[3], &p[0])),

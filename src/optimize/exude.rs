@@ -25,7 +25,7 @@ use std::time::{Duration, Instant};
 use crate::criteria::{circumcenter, Criteria};
 use crate::error::Result;
 use crate::predicates::Point;
-use crate::quality::tetrahedron;
+use crate::quality::min_dihedral as dihedral;
 use crate::refine::Labeled;
 use crate::triangulation::tets::{FACE, INFINITE};
 
@@ -45,7 +45,7 @@ impl Default for ExudeOptions {
     fn default() -> Self {
         ExudeOptions {
             target_dihedral: 15.0,
-            max_weight_ratio: 0.3,
+            max_weight_ratio: 0.75,
             time_limit: None,
         }
     }
@@ -142,7 +142,7 @@ impl SliverQueue {
 }
 
 fn min_dihedral(m: &Labeled, v: [u32; 4]) -> f64 {
-    tetrahedron(v.map(|x| *m.tri.vertex(x))).min_dihedral
+    dihedral(v.map(|x| *m.tri.vertex(x)))
 }
 
 /// The best weight for vertex `v` (a vertex of `t`) if it improves on its current star.
@@ -253,7 +253,7 @@ fn cone_quality(m: &Labeled, criteria: &Criteria, v: u32) -> Option<f64> {
         if !criteria.cell_shape_holds(p, &circumcenter(p)) {
             return None;
         }
-        quality = quality.min(tetrahedron(p.map(|x| *x)).min_dihedral);
+        quality = quality.min(dihedral(p.map(|x| *x)));
     }
     Some(quality)
 }
@@ -275,6 +275,11 @@ fn cone_labels(m: &Labeled) -> Vec<i32> {
 fn keeps_interfaces(m: &Labeled, v: u32, labels: &[i32]) -> bool {
     let tets = m.tri.tets();
     let cavity = m.tri.cavity();
+    // Inside one subdomain (or outside) nothing separates labels, before or after.
+    let first = m.label[cavity[0] as usize];
+    if cavity.iter().all(|&t| m.label[t as usize] == first) && labels.iter().all(|&l| l == first) {
+        return true;
+    }
     let mut before = Vec::new();
     for &a in cavity {
         for i in 0..4 {
