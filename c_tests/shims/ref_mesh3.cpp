@@ -11,6 +11,9 @@
 // nested spheres. The shim therefore does what make_mesh_3 does (init_c3t3, then refine_mesh_3)
 // with segments between two random points of the box instead, each crossing found by the
 // domain's own Do_intersect_surface / Construct_intersection.
+//
+// Optimization (ref_cgal_mesh_*_optimized): refine_mesh_3's perturb()/exude() options, or the same
+// two calls refine_mesh_3 makes (perturb_mesh_3, then exude_mesh_3) made here one by one, timed.
 #include "ref_mesh3.h"
 #include "ref_internal.hpp"
 
@@ -18,8 +21,11 @@
 #include <CGAL/Labeled_mesh_domain_3.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_criteria_3.h>
+#include <CGAL/Mesh_optimization_return_code.h>
 #include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/exude_mesh_3.h>
 #include <CGAL/make_mesh_3.h>
+#include <CGAL/perturb_mesh_3.h>
 #include <CGAL/refine_mesh_3.h>
 
 #include <algorithm>
@@ -140,37 +146,80 @@ void insert_initial_points(const Domain &domain, C3t3 &c3t3) {
   }
 }
 
-int mesh(const Domain &domain, const RefMeshCriteria &c, RefMesh *out, const ref::Stopwatch &clock,
-         RefTiming *timing) {
+// make_mesh_3 (init_c3t3 replaced, see above), optimized as `o` says.
+int mesh(const Domain &domain, const RefMeshCriteria &c, const RefMeshOptions &o, RefMesh *out,
+         const ref::Stopwatch &clock, RefMeshTiming *timing) {
   namespace params = CGAL::parameters;
   Criteria criteria(params::facet_angle = criterion(c.facet_angle),
                     params::facet_size = criterion(c.facet_size),
                     params::facet_distance = criterion(c.facet_distance),
                     params::cell_radius_edge_ratio = criterion(c.cell_radius_edge_ratio),
                     params::cell_size = criterion(c.cell_size));
+  RefMeshTiming t{};
+  t.perturb_code = t.exude_code = REF_OPTIMIZER_NOT_RUN;
   C3t3 c3t3;
   insert_initial_points(domain, c3t3);
   if (c3t3.triangulation().number_of_vertices() == 0)
     return ref::fail("ref_mesh3: no random segment across the box crosses the surface");
-  CGAL::refine_mesh_3(c3t3, domain, criteria, params::no_perturb(), params::no_exude());
+  RefMesh refined{};
+  if (o.optimization == REF_OPTIMIZE_MESH_3) {
+    // CGAL's defaults: no time_limit argument = the refinement's time (make_mesh_3's default).
+    if (o.time_limit < 0)
+      CGAL::refine_mesh_3(c3t3, domain, criteria, params::perturb(), params::exude());
+    else
+      CGAL::refine_mesh_3(c3t3, domain, criteria, params::perturb(params::time_limit = o.time_limit),
+                          params::exude(params::time_limit = o.time_limit));
+    t.perturb_code = t.exude_code = REF_OPTIMIZER_NOT_REPORTED;
+  } else if (o.optimization == REF_OPTIMIZE_SEPARATE) {
+    ref::Stopwatch refine_clock;
+    CGAL::refine_mesh_3(c3t3, domain, criteria, params::no_perturb(), params::no_exude());
+    t.refine_seconds = refine_clock.seconds();
+    if (o.refined && export_complex(c3t3, &refined) != 0) return -1;
+    // As refine_mesh_3_impl: perturb_mesh_3 then exude_mesh_3, sliver bounds at their defaults.
+    double limit = o.time_limit < 0 ? t.refine_seconds : o.time_limit;
+    ref::Stopwatch perturb_clock;
+    t.perturb_code = static_cast<int>(CGAL::perturb_mesh_3(c3t3, domain, params::time_limit = limit));
+    t.perturb_seconds = perturb_clock.seconds();
+    ref::Stopwatch exude_clock;
+    t.exude_code = static_cast<int>(CGAL::exude_mesh_3(c3t3, params::time_limit = limit));
+    t.exude_seconds = exude_clock.seconds();
+  } else {
+    CGAL::refine_mesh_3(c3t3, domain, criteria, params::no_perturb(), params::no_exude());
+  }
   int rc = export_complex(c3t3, out);
-  if (timing) timing->seconds = clock.seconds();
-  return rc;  // c3t3 is destroyed after the clock stopped
+  t.seconds = clock.seconds();
+  if (rc != 0) {
+    ref_mesh_free(&refined);
+    return rc;
+  }
+  if (o.refined) *o.refined = refined;
+  if (timing) *timing = t;
+  return 0;  // c3t3 is destroyed after the clock stopped
+}
+
+int check_options(const RefMeshOptions &o, const char *caller) {
+  if (o.optimization < REF_OPTIMIZE_NONE || o.optimization > REF_OPTIMIZE_SEPARATE ||
+      !(o.time_limit == o.time_limit))
+    return ref::fail(caller);
+  return 0;
 }
 
 CGAL::Bbox_3 box(const double b[6]) { return CGAL::Bbox_3(b[0], b[1], b[2], b[3], b[4], b[5]); }
 
 }  // namespace
 
-extern "C" int ref_cgal_mesh_implicit(RefImplicitFn f, void *user_data, const double bbox[6],
-                                      double relative_error, const RefMeshCriteria *criteria,
-                                      RefMesh *out, RefTiming *timing) {
+extern "C" int ref_cgal_mesh_implicit_optimized(RefImplicitFn f, void *user_data, const double bbox[6],
+                                                double relative_error, const RefMeshCriteria *criteria,
+                                                const RefMeshOptions *options, RefMesh *out,
+                                                RefMeshTiming *timing) {
   if (!f || !bbox || !criteria || !out) return ref::fail("ref_cgal_mesh_implicit: NULL argument");
+  const RefMeshOptions o = options ? *options : RefMeshOptions{};
+  if (check_options(o, "ref_cgal_mesh_implicit: unknown optimization or NaN time limit") != 0) return -1;
   try {
     ref::Stopwatch clock;
     Domain domain = Domain::create_implicit_mesh_domain(
         Implicit{f, user_data}, box(bbox), CGAL::parameters::relative_error_bound = relative_error);
-    return mesh(domain, *criteria, out, clock, timing);
+    return mesh(domain, *criteria, o, out, clock, timing);
   } catch (const std::exception &e) {
     return ref::fail(e.what());
   } catch (...) {
@@ -178,20 +227,55 @@ extern "C" int ref_cgal_mesh_implicit(RefImplicitFn f, void *user_data, const do
   }
 }
 
-extern "C" int ref_cgal_mesh_labeled(RefLabelFn f, void *user_data, const double bbox[6],
-                                     double relative_error, const RefMeshCriteria *criteria,
-                                     RefMesh *out, RefTiming *timing) {
+extern "C" int ref_cgal_mesh_labeled_optimized(RefLabelFn f, void *user_data, const double bbox[6],
+                                               double relative_error, const RefMeshCriteria *criteria,
+                                               const RefMeshOptions *options, RefMesh *out,
+                                               RefMeshTiming *timing) {
   if (!f || !bbox || !criteria || !out) return ref::fail("ref_cgal_mesh_labeled: NULL argument");
+  const RefMeshOptions o = options ? *options : RefMeshOptions{};
+  if (check_options(o, "ref_cgal_mesh_labeled: unknown optimization or NaN time limit") != 0) return -1;
   try {
     ref::Stopwatch clock;
     Domain domain(CGAL::parameters::function = Domain::Fct(Labeling{f, user_data}),
                   CGAL::parameters::bounding_object = box(bbox),
                   CGAL::parameters::relative_error_bound = relative_error);
-    return mesh(domain, *criteria, out, clock, timing);
+    return mesh(domain, *criteria, o, out, clock, timing);
   } catch (const std::exception &e) {
     return ref::fail(e.what());
   } catch (...) {
     return ref::fail("ref_cgal_mesh_labeled: unknown exception");
+  }
+}
+
+extern "C" int ref_cgal_mesh_implicit(RefImplicitFn f, void *user_data, const double bbox[6],
+                                      double relative_error, const RefMeshCriteria *criteria,
+                                      RefMesh *out, RefTiming *timing) {
+  RefMeshTiming t{};
+  int rc = ref_cgal_mesh_implicit_optimized(f, user_data, bbox, relative_error, criteria, nullptr, out, &t);
+  if (rc == 0 && timing) timing->seconds = t.seconds;
+  return rc;
+}
+
+extern "C" int ref_cgal_mesh_labeled(RefLabelFn f, void *user_data, const double bbox[6],
+                                     double relative_error, const RefMeshCriteria *criteria,
+                                     RefMesh *out, RefTiming *timing) {
+  RefMeshTiming t{};
+  int rc = ref_cgal_mesh_labeled_optimized(f, user_data, bbox, relative_error, criteria, nullptr, out, &t);
+  if (rc == 0 && timing) timing->seconds = t.seconds;
+  return rc;
+}
+
+extern "C" const char *ref_optimizer_code_name(int code) {
+  switch (code) {
+    case REF_OPTIMIZER_NOT_RUN: return "not run";
+    case REF_OPTIMIZER_NOT_REPORTED: return "not reported by make_mesh_3";
+    case CGAL::BOUND_REACHED: return "bound reached";
+    case CGAL::TIME_LIMIT_REACHED: return "time limit reached";
+    case CGAL::CANT_IMPROVE_ANYMORE: return "can't improve anymore";
+    case CGAL::CONVERGENCE_REACHED: return "convergence reached";
+    case CGAL::MAX_ITERATION_NUMBER_REACHED: return "max iteration number reached";
+    case CGAL::ALL_VERTICES_FROZEN: return "all vertices frozen";
+    default: return "unknown error";
   }
 }
 
