@@ -55,7 +55,9 @@ static int run_delmesh(const Shape *s, double h, double *seconds, size_t *cells)
   if (st == DELMESH_OK) st = delmesh_mesher_set_facet_distance(m, h / 5);
   if (st == DELMESH_OK) st = delmesh_mesher_set_cell_radius_edge_ratio(m, 2);
   if (st == DELMESH_OK) st = delmesh_mesher_set_cell_size(m, h);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_optimization(m, 0, 0); /* as CGAL: no exude */
+  /* As CGAL's side: no exudation, no surface sliver bound (not a CGAL criterion). */
+  if (st == DELMESH_OK) st = delmesh_mesher_set_optimization(m, 0, 0);
+  if (st == DELMESH_OK) st = delmesh_mesher_set_surface_sliver_angle(m, 0);
   if (st == DELMESH_OK) st = delmesh_mesher_run(m, d, &mesh);
   *seconds = bench_seconds_now() - t0;
   if (st != DELMESH_OK) {

@@ -159,8 +159,10 @@ static DelmeshStatus run_delmesh(const Shape *s, const RefMeshCriteria *c, Delme
   if (st == DELMESH_OK && c->cell_radius_edge_ratio > 0)
     st = delmesh_mesher_set_cell_radius_edge_ratio(mesher, c->cell_radius_edge_ratio);
   if (st == DELMESH_OK && c->cell_size > 0) st = delmesh_mesher_set_cell_size(mesher, c->cell_size);
-  /* Refinement alone, as CGAL's side runs with no_perturb() and no_exude(). */
+  /* Refinement alone with CGAL's criteria only, as CGAL's side runs with no_perturb() and
+   * no_exude(): no exudation, no surface sliver bound. */
   if (st == DELMESH_OK) st = delmesh_mesher_set_optimization(mesher, 0, 0);
+  if (st == DELMESH_OK) st = delmesh_mesher_set_surface_sliver_angle(mesher, 0);
   if (st == DELMESH_OK) st = delmesh_mesher_run(mesher, domain, mesh);
   double seconds = now() - start;
   delmesh_mesher_free(mesher);

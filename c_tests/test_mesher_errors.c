@@ -119,6 +119,8 @@ static void mesher_errors(void) {
     expect(delmesh_mesher_set_cell_size(m, sizes[i]), DELMESH_ERROR_INVALID_ARGUMENT, what, "cell size");
   }
   expect(delmesh_mesher_set_cell_radius_edge_ratio(m, 1.5), DELMESH_ERROR_INVALID_ARGUMENT, "radius-edge ratio 1.5", "terminate");
+  expect(delmesh_mesher_set_surface_sliver_angle(m, 25), DELMESH_ERROR_INVALID_ARGUMENT, "surface sliver angle 25", "terminate");
+  expect(delmesh_mesher_set_surface_sliver_angle(m, NAN), DELMESH_ERROR_INVALID_ARGUMENT, "surface sliver angle NaN", "surface sliver");
   expect(delmesh_mesher_set_sizing_field(m, 7, size_field, NULL), DELMESH_ERROR_INVALID_ARGUMENT, "sizing field for criterion 7", "7");
   expect(delmesh_mesher_set_sizing_field(m, DELMESH_SIZING_CELL_SIZE, NULL, NULL), DELMESH_ERROR_NULL_ARGUMENT, "NULL sizing field", "`f`");
   expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_PERTURB, 0), DELMESH_ERROR_INVALID_ARGUMENT, "perturbation (not available)", "not available");

@@ -598,9 +598,10 @@ enum DelmeshStatus delmesh_mesh_write(const struct DelmeshMesh *m, const char *p
 void delmesh_mesher_free(struct DelmeshMesher *m);
 
 /*
- A new mesher with no bound set: only the facet topology criterion (every vertex of a
- surface facet lies on the surface) holds, as in CGAL Mesh_3. Set at least a facet size
- or distance and a cell bound for a useful mesh.
+ A new mesher with no bound set but the facet topology criterion (every vertex of a
+ surface facet lies on the surface, as in CGAL Mesh_3) and the surface sliver bound (15
+ degrees, `delmesh_mesher_set_surface_sliver_angle`); sliver exudation on. Set at least a
+ facet size or distance and a cell bound for a useful mesh.
 
  Errors: NULL `out` -> `DELMESH_ERROR_NULL_ARGUMENT`.
 
@@ -740,6 +741,19 @@ enum DelmeshStatus delmesh_mesher_set_sizing_field(struct DelmeshMesher *m,
                                                    int32_t which,
                                                    DelmeshSizingFn f,
                                                    void *user_data);
+
+/*
+ Lower bound, in degrees, on the smallest dihedral angle of the cells with at least three
+ vertices on the surface ("surface slivers"), in [0, 20]; 0 turns it off. Default 15.
+ Such cells can have a good radius-edge ratio, and exudation (which keeps the boundary)
+ often cannot remove them, so refinement treats them as bad cells. Not a CGAL Mesh_3
+ criterion: set 0 to compare with CGAL at equal criteria. Errors: NULL `m`; a value
+ outside [0, 20] or NaN -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_surface_sliver_angle(struct DelmeshMesher *m, double degrees);
 
 /*
  Regular (weighted Delaunay) tetrahedralization of the `n` points `xyz` (x y z

@@ -10,8 +10,9 @@
 //!   restricted facet failing the angle, size or distance bound); the point is the center
 //!   of the facet's surface Delaunay ball. It rejects a lower level's point that lies
 //!   inside a restricted facet's surface Delaunay ball, and queues that facet (R3.2).
-//! - [`CellLevel`]: rule R3, a cell in the complex failing the radius-edge or size bound;
-//!   the point is its circumcenter.
+//! - [`CellLevel`]: rule R3, a cell in the complex failing the radius-edge or size bound, or a
+//!   surface sliver (three or four vertices on the surface, see `criteria`); the point is its
+//!   circumcenter.
 
 use super::complex::{Complex, SURFACE, VOLUME};
 use super::queue::{Element, Queue};
@@ -147,7 +148,13 @@ impl CellLevel {
         if c.label(t) <= 0 {
             return Ok(None);
         }
-        let v = c.tri.tets().vertices(t).map(|x| c.tri.vertex(x));
+        let ids = c.tri.tets().vertices(t);
+        let v = ids.map(|x| c.tri.vertex(x));
+        if ids.iter().filter(|&&x| c.dimension(x) == SURFACE).count() >= 3 {
+            if let Some(b) = criteria.surface_sliver(v) {
+                return Ok(Some(b));
+            }
+        }
         criteria.cell(v, c.center(t), c.label(t))
     }
 }
