@@ -422,7 +422,14 @@ static void error_paths(void) {
   expect_failure("collinear points", xy, 2, NULL, 0, NULL, DELMESH_ERROR_INVALID_INPUT, "points");
   expect_failure("NULL segments", xy, 6, NULL, 1, NULL, DELMESH_ERROR_NULL_ARGUMENT, "segments");
   options.mode = DELMESH_MODE2D_QUALITY;
-  expect_failure("quality mode", xy, 6, NULL, 0, &options, DELMESH_ERROR_INVALID_ARGUMENT, "not yet supported");
+  options.min_angle_degrees = 35;
+  expect_failure("quality mode, angle bound above 34 degrees", xy, 6, NULL, 0, &options,
+                 DELMESH_ERROR_INVALID_ARGUMENT, "min_angle_degrees");
+  options.min_angle_degrees = 20;
+  options.n_holes = 1;
+  expect_failure("quality mode, NULL holes", xy, 6, NULL, 0, &options, DELMESH_ERROR_NULL_ARGUMENT, "holes");
+  options.n_holes = 0;
+  options.min_angle_degrees = 0;
   options.mode = DELMESH_MODE2D_DELAUNAY;
   options.max_area = -1;
   expect_failure("negative max_area", xy, 6, NULL, 0, &options, DELMESH_ERROR_INVALID_ARGUMENT, "max_area");

@@ -111,8 +111,8 @@ typedef enum DelmeshMode2d {
      */
     DELMESH_MODE2D_CONFORMING = 1,
     /*
-     Conforming + Ruppert/Shewchuk refinement inside the domain. Not yet supported:
-     `delmesh_triangulate_2d` returns DELMESH_ERROR_INVALID_ARGUMENT for it.
+     Conforming + Ruppert/Shewchuk Delaunay refinement (off-centers, concentric shells)
+     inside the domain; output = the triangles of the domain only, holes removed.
      */
     DELMESH_MODE2D_QUALITY = 2,
 } DelmeshMode2d;
@@ -272,7 +272,9 @@ typedef double (*DelmeshSizingFn)(const double *p, int32_t dimension, int32_t in
 typedef struct DelmeshOptions2d {
     enum DelmeshMode2d mode;
     /*
-     Quality mode: lower bound on triangle angles, in degrees; 0 = no angle criterion.
+     Quality mode: lower bound on triangle angles, in degrees, at most 34; 0 = no angle
+     criterion. Triangles skinny because of an input angle below 60 degrees may stay below
+     it. Other modes: ignored, but must be in [0, 60).
      */
     double min_angle_degrees;
     /*
@@ -285,7 +287,9 @@ typedef struct DelmeshOptions2d {
     const double *holes;
     size_t n_holes;
     /*
-     Quality mode: `n_regions` (x, y, label, max_area) seeds; max_area 0 = the global one.
+     Quality mode: `n_regions` (x, y, label, max_area) seeds; the triangles reachable from
+     a seed without crossing a segment get `label` (an integer) and `max_area` as their area
+     bound (0 = the global one). Triangles in no seeded region have label 1.
      */
     const double *regions;
     size_t n_regions;
@@ -799,19 +803,30 @@ enum DelmeshStatus delmesh_regular_tetrahedralize(const double *xyz,
    Delaunay triangulation of the convex hull of all points. `delmesh_mesh_edges` lists the
    sub-segments, input segment after input segment, each from its first point to its
    second. The number of added points is `delmesh_mesh_vertex_count - n_points`.
- - QUALITY: not yet supported (DELMESH_ERROR_INVALID_ARGUMENT).
+ - QUALITY: the conforming triangulation, then Delaunay refinement of the domain (Ruppert,
+   with Shewchuk's concentric shells at small input angles and Üngör's off-centers): points
+   are added until no triangle has an angle below `min_angle_degrees` or an area above its
+   bound, except triangles that are skinny because of an input angle below 60 degrees. The
+   domain is what is enclosed by segments: triangles reachable from the convex hull's
+   outside or from a hole seed without crossing a segment are removed; with no segment the
+   convex hull is the domain (its edges become segments). Every sub-segment stays strongly
+   Delaunay-admissible: the triangles are those of the Delaunay triangulation of all output
+   vertices that lie in the domain. Input points outside the domain are in no triangle.
 
  Output: vertices with z = 0; vertex `i < n_points` is input point `i`, added points
  follow. A point equal to an earlier one is merged onto it (`delmesh_mesh_duplicate_of`),
  keeps its slot and is used by nothing; segments through it use the earlier point and a
- repeated segment is listed once. Triangles are counter-clockwise, label 1. Vertex
- dimensions: 0 at segment ends, 1 for added points, 2 for other points, -1 for merged
- copies (and for every point in DELAUNAY mode). Deterministic.
+ repeated segment is listed once. Triangles are counter-clockwise, label 1 (QUALITY: the
+ region labels). Vertex dimensions: 0 at segment ends, 1 for points added on segments, 2 for
+ other points, -1 for merged copies (and for every point in DELAUNAY mode). Deterministic.
 
  On success `*out` receives a new mesh owned by the caller (free it with
- `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xy`, `out` or
- (with `n_segments > 0`) `segments` -> DELMESH_ERROR_NULL_ARGUMENT; an unknown mode, a
- negative or non-finite option, or the QUALITY mode -> DELMESH_ERROR_INVALID_ARGUMENT; a
+ `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xy`, `out`,
+ (with `n_segments > 0`) `segments`, or in QUALITY mode (with a count > 0) `holes` or
+ `regions` -> DELMESH_ERROR_NULL_ARGUMENT; an unknown mode, a negative or non-finite
+ option, a QUALITY angle bound above 34 degrees, a non-integer region label ->
+ DELMESH_ERROR_INVALID_ARGUMENT; refinement that does not finish within 2^24 added points
+ -> DELMESH_ERROR_LIMIT; a
  non-finite coordinate or one of magnitude above 1e60, all points collinear, a segment
  index out of range, a zero-length segment, a point on a segment, or two crossing segments
  -> DELMESH_ERROR_INVALID_INPUT, the message naming the culprits.

@@ -10,9 +10,11 @@ use delmesh::mesh2d::classify::{classify, Theta2};
 use delmesh::mesh2d::cloud::Cloud;
 use delmesh::mesh2d::delaunay::Delaunay2d;
 use delmesh::mesh2d::exact::incircle_sos;
+use delmesh::mesh2d::refine::{QualityOptions, RegionSeed};
 use delmesh::mesh2d::subdivide::Algorithm;
 use delmesh::mesh2d::{
-    conforming_2d, conforming_2d_with, delaunay_2d, validate_mesh, Conforming2d,
+    conforming_2d, conforming_2d_with, delaunay_2d, quality_2d, validate_mesh, Conforming2d,
+    Quality2d,
 };
 use delmesh::predicates::{incircle_coplanar_sos, orient2d, Sign};
 use delmesh::Mesh;
@@ -666,4 +668,362 @@ fn algorithm_3_1_on_the_paper_situations() {
         .collect();
     let out = conform_with(&xy, &polyline(xy.len(), false), "zigzag", Algorithm::Brutal);
     assert!(out.subdivision.nodes_cleaned >= 1);
+}
+
+// ---------------------------------------------------------------- quality refinement
+
+/// The smallest angle of each triangle of `mesh`, in degrees, with its shortest edge.
+fn smallest_angles(mesh: &Mesh) -> Vec<(f64, [u32; 2])> {
+    mesh.triangles
+        .chunks_exact(3)
+        .map(|t| {
+            let p = [0, 1, 2].map(|k| vertex2(mesh, t[k]));
+            let sq = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2);
+            let len = [sq(p[1], p[2]), sq(p[2], p[0]), sq(p[0], p[1])];
+            let k = (0..3).min_by(|&i, &j| len[i].total_cmp(&len[j])).unwrap();
+            let (x, y) = (len[(k + 1) % 3], len[(k + 2) % 3]);
+            let cos = ((x + y - len[k]) / (2.0 * (x * y).sqrt())).clamp(-1.0, 1.0);
+            (cos.acos().to_degrees(), [t[(k + 1) % 3], t[(k + 2) % 3]])
+        })
+        .collect()
+}
+
+fn triangle_area(mesh: &Mesh, t: &[u32]) -> f64 {
+    let [a, b, c] = [0, 1, 2].map(|k| vertex2(mesh, t[k]));
+    0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+}
+
+/// Whether `p` lies on the segment `[a b]` (up to rounding).
+fn on_segment(p: [f64; 2], a: [f64; 2], b: [f64; 2]) -> bool {
+    let len2 = (b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2);
+    let t = ((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1])) / len2;
+    let h = ((p[0] - a[0]) * (b[1] - a[1]) - (p[1] - a[1]) * (b[0] - a[0])).abs() / len2;
+    (-1e-12..=1.0 + 1e-12).contains(&t) && h < 1e-9
+}
+
+/// Whether the edge `(p, q)` joins two points on two segments that meet at an input point at
+/// an angle below 60 degrees: a triangle with that shortest edge is skinny because of a small
+/// input angle.
+fn at_small_input_angle(p: [f64; 2], q: [f64; 2], xy: &[[f64; 2]], segments: &[[u32; 2]]) -> bool {
+    for (i, s) in segments.iter().enumerate() {
+        for r in &segments[i + 1..] {
+            let Some(z) = s.iter().find(|&&z| r.contains(&z)).copied() else {
+                continue;
+            };
+            let far = |g: &[u32; 2]| if g[0] == z { g[1] } else { g[0] };
+            let (pz, ps, pr) = (xy[z as usize], xy[far(s) as usize], xy[far(r) as usize]);
+            let (u, v) = (
+                [ps[0] - pz[0], ps[1] - pz[1]],
+                [pr[0] - pz[0], pr[1] - pz[1]],
+            );
+            let cos = (u[0] * v[0] + u[1] * v[1]) / (u[0].hypot(u[1]) * v[0].hypot(v[1]));
+            if cos <= 0.5 {
+                continue;
+            }
+            let on = |x: [f64; 2], g: [f64; 2]| x == pz || on_segment(x, pz, g);
+            if (on(p, ps) && on(q, pr)) || (on(p, pr) && on(q, ps)) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
+struct QualityCase<'a> {
+    name: &'a str,
+    xy: Vec<[f64; 2]>,
+    segments: Vec<[u32; 2]>,
+    options: QualityOptions,
+}
+
+/// Refines `case` and checks: validity, strong admissibility of every sub-segment, every
+/// segment the union of its sub-segments, every angle at least the bound but at small input
+/// angles (counted), every area within its region's bound, determinism. Returns the result
+/// and the count of triangles below the bound.
+fn refine_checked(case: &QualityCase) -> (Quality2d, usize) {
+    let name = case.name;
+    let flat_segments: Vec<u32> = case.segments.iter().flatten().copied().collect();
+    let out = quality_2d(&flat(&case.xy), &flat_segments, &case.options)
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    let mesh = &out.mesh;
+    validate_mesh(mesh).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert!(!mesh.triangles.is_empty(), "{name}: no triangle");
+    assert_admissible(mesh, name);
+    if !case.segments.is_empty() {
+        assert_union(mesh, &case.xy, &case.segments, name);
+    }
+    let bound = case.options.min_angle_degrees;
+    let (mut excused, mut worst) = (0, 180.0f64);
+    for (angle, [p, q]) in smallest_angles(mesh) {
+        worst = worst.min(angle);
+        if angle >= bound {
+            continue;
+        }
+        let near =
+            at_small_input_angle(vertex2(mesh, p), vertex2(mesh, q), &case.xy, &case.segments);
+        assert!(near, "{name}: a triangle of smallest angle {angle:.2} (bound {bound}) away from small input angles");
+        excused += 1;
+    }
+    for (t, tri) in mesh.triangles.chunks_exact(3).enumerate() {
+        let label = mesh.triangle_labels[t];
+        let bound = case
+            .options
+            .regions
+            .iter()
+            .find(|r| r.label == label && r.max_area > 0.0)
+            .map_or(case.options.max_area, |r| r.max_area);
+        if bound > 0.0 {
+            let area = triangle_area(mesh, tri);
+            assert!(
+                area <= bound,
+                "{name}: triangle {t} of area {area} above {bound}"
+            );
+        }
+    }
+    let again = quality_2d(&flat(&case.xy), &flat_segments, &case.options).expect("second run");
+    assert_eq!(out.mesh, again.mesh, "{name}: not deterministic");
+    eprintln!(
+        "{name}: {} triangles, {} vertices ({} by subdivision, {} on segments, {} inside, {} off-centers), smallest angle {worst:.2}, {excused} below {bound} at small input angles ({} rejected)",
+        mesh.triangles.len() / 3,
+        mesh.vertex_count(),
+        out.conforming_points,
+        out.refinement.segment_splits,
+        out.refinement.interior_points,
+        out.refinement.off_centers,
+        out.refinement.rejected_forever
+    );
+    (out, excused)
+}
+
+fn angle_only(degrees: f64) -> QualityOptions {
+    QualityOptions {
+        min_angle_degrees: degrees,
+        ..QualityOptions::default()
+    }
+}
+
+/// A capital A: an outer outline of 11 points and a triangular counter (a hole).
+fn letter_a() -> (Vec<[f64; 2]>, Vec<[u32; 2]>, [f64; 2]) {
+    let outer = [
+        [0.0, 0.0],
+        [1.1, 0.0],
+        [1.55, 1.3],
+        [3.45, 1.3],
+        [3.9, 0.0],
+        [5.0, 0.0],
+        [3.05, 6.0],
+        [1.95, 6.0],
+    ];
+    let counter = [[1.95, 2.3], [3.05, 2.3], [2.5, 4.3]];
+    let mut xy = outer.to_vec();
+    xy.extend(counter);
+    let mut segments = polyline(outer.len(), true);
+    let n = outer.len() as u32;
+    segments.extend([[n, n + 1], [n + 1, n + 2], [n + 2, n]]);
+    (xy, segments, [2.5, 3.0])
+}
+
+fn square_with_hole() -> (Vec<[f64; 2]>, Vec<[u32; 2]>) {
+    let xy = vec![
+        [0.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 4.0],
+        [0.0, 4.0],
+        [1.5, 1.5],
+        [2.5, 1.5],
+        [2.5, 2.5],
+        [1.5, 2.5],
+    ];
+    let mut segments = polyline(4, true);
+    segments.extend([[4, 5], [5, 6], [6, 7], [7, 4]]);
+    (xy, segments)
+}
+
+#[test]
+fn quality_letter_a_with_its_counter_removed() {
+    let (xy, segments, hole) = letter_a();
+    for degrees in [20.0, 25.0, 30.0, 33.0] {
+        let name = format!("letter A at {degrees} degrees");
+        let case = QualityCase {
+            name: &name,
+            xy: xy.clone(),
+            segments: segments.clone(),
+            options: QualityOptions {
+                holes: vec![hole],
+                ..angle_only(degrees)
+            },
+        };
+        let (out, excused) = refine_checked(&case);
+        assert_eq!(
+            excused, 0,
+            "{name}: the A has no input angle below 60 degrees"
+        );
+        for t in out.mesh.triangles.chunks_exact(3) {
+            let c = [0, 1, 2].map(|k| vertex2(&out.mesh, t[k]));
+            let centroid = [
+                (c[0][0] + c[1][0] + c[2][0]) / 3.0,
+                (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+            ];
+            let inside_counter = centroid[1] > 2.3 && centroid[1] < 4.3 && {
+                let half = 0.55 * (4.3 - centroid[1]) / 2.0;
+                (centroid[0] - 2.5).abs() < half
+            };
+            assert!(!inside_counter, "{name}: a triangle in the counter");
+        }
+    }
+}
+
+#[test]
+fn quality_thin_rhombus_is_left_alone() {
+    let xy = vec![[0.0, 0.0], [4.0, 0.6], [8.0, 0.0], [4.0, -0.6]];
+    let case = QualityCase {
+        name: "thin rhombus at 25 degrees",
+        xy,
+        segments: polyline(4, true),
+        options: angle_only(25.0),
+    };
+    let (out, excused) = refine_checked(&case);
+    assert_eq!(
+        out.mesh.triangles.len() / 3,
+        2,
+        "the two triangles are skinny at input angles only"
+    );
+    assert_eq!(excused, 2);
+}
+
+#[test]
+fn quality_square_with_a_hole_and_area_bound() {
+    let (xy, segments) = square_with_hole();
+    for (degrees, area) in [(30.0, 0.0), (25.0, 0.05)] {
+        let name = format!("square with a hole, {degrees} degrees, area {area}");
+        let case = QualityCase {
+            name: &name,
+            xy: xy.clone(),
+            segments: segments.clone(),
+            options: QualityOptions {
+                holes: vec![[2.0, 2.0]],
+                max_area: area,
+                ..angle_only(degrees)
+            },
+        };
+        let (out, _) = refine_checked(&case);
+        let total: f64 = out
+            .mesh
+            .triangles
+            .chunks_exact(3)
+            .map(|t| triangle_area(&out.mesh, t))
+            .sum();
+        assert!(
+            (total - 15.0).abs() < 1e-9,
+            "{name}: area {total}, not 16 - 1"
+        );
+    }
+}
+
+#[test]
+fn quality_regions_get_their_labels_and_area_bounds() {
+    // A rectangle cut in two by a vertical segment; left region label 7 with a fine bound,
+    // right region unlabeled (label 1) with the global bound.
+    let xy = vec![
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [4.0, 0.0],
+        [4.0, 2.0],
+        [2.0, 2.0],
+        [0.0, 2.0],
+    ];
+    let mut segments = polyline(6, true);
+    segments.push([1, 4]);
+    let case = QualityCase {
+        name: "two regions",
+        xy,
+        segments,
+        options: QualityOptions {
+            max_area: 0.5,
+            regions: vec![RegionSeed {
+                seed: [1.0, 1.0],
+                label: 7,
+                max_area: 0.02,
+            }],
+            ..angle_only(28.0)
+        },
+    };
+    let (out, _) = refine_checked(&case);
+    let mesh = &out.mesh;
+    let (mut left, mut right) = (0.0, 0.0);
+    for (t, tri) in mesh.triangles.chunks_exact(3).enumerate() {
+        let x = (0..3).map(|k| vertex2(mesh, tri[k])[0]).sum::<f64>() / 3.0;
+        let (label, area) = (mesh.triangle_labels[t], triangle_area(mesh, tri));
+        if x < 2.0 {
+            assert_eq!(label, 7);
+            assert!(area <= 0.02);
+            left += area;
+        } else {
+            assert_eq!(label, 1);
+            assert!(area <= 0.5);
+            right += area;
+        }
+    }
+    assert!((left - 4.0).abs() < 1e-9 && (right - 4.0).abs() < 1e-9);
+}
+
+#[test]
+fn quality_small_input_angles_terminate() {
+    for degrees in [1.0f64, 5.0, 10.0, 20.0, 45.0] {
+        let a = degrees.to_radians();
+        // A fan of three segments from the origin closed into a polygon.
+        let xy = vec![
+            [0.0, 0.0],
+            [1.0, 0.0],
+            [0.8 * a.cos(), 0.8 * a.sin()],
+            [1.0 * (2.0 * a).cos(), 1.0 * (2.0 * a).sin()],
+        ];
+        let segments = vec![[0, 1], [1, 2], [2, 3], [3, 0], [0, 2]];
+        for bound in [25.0, 30.0] {
+            let name = format!("{degrees} degree angles at {bound}");
+            let case = QualityCase {
+                name: &name,
+                xy: xy.clone(),
+                segments: segments.clone(),
+                options: angle_only(bound),
+            };
+            refine_checked(&case);
+        }
+    }
+}
+
+#[test]
+fn quality_points_only_mesh_their_convex_hull() {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(61);
+    let xy: Vec<[f64; 2]> = (0..200)
+        .map(|_| [rng.gen::<f64>(), rng.gen::<f64>()])
+        .collect();
+    let case = QualityCase {
+        name: "200 random points",
+        xy,
+        segments: Vec::new(),
+        options: angle_only(30.0),
+    };
+    let (out, _) = refine_checked(&case);
+    assert!(!out.mesh.edges.is_empty(), "the hull edges are segments");
+}
+
+#[test]
+fn quality_options_are_checked() {
+    let (xy, segments) = square_with_hole();
+    let flat_segments: Vec<u32> = segments.iter().flatten().copied().collect();
+    let run = |options: QualityOptions| quality_2d(&flat(&xy), &flat_segments, &options);
+    let e = run(angle_only(35.0)).unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidArgument);
+    assert!(e.message.contains("34"), "{}", e.message);
+    assert!(run(QualityOptions {
+        max_area: f64::NAN,
+        ..angle_only(20.0)
+    })
+    .is_err());
+    assert!(run(QualityOptions {
+        holes: vec![[f64::INFINITY, 0.0]],
+        ..angle_only(20.0)
+    })
+    .is_err());
 }

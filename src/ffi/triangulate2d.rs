@@ -3,6 +3,7 @@
 use super::mesh::DelmeshMesh;
 use super::{args, call, DelmeshStatus, Failure};
 use crate::mesh2d;
+use crate::mesh2d::refine::{QualityOptions, RegionSeed};
 
 /// What `delmesh_triangulate_2d` computes.
 #[allow(non_camel_case_types)]
@@ -15,8 +16,8 @@ pub enum DelmeshMode2d {
     /// Delaunay-admissible; output = Delaunay triangulation of the convex hull of the
     /// augmented point set.
     DELMESH_MODE2D_CONFORMING = 1,
-    /// Conforming + Ruppert/Shewchuk refinement inside the domain. Not yet supported:
-    /// `delmesh_triangulate_2d` returns DELMESH_ERROR_INVALID_ARGUMENT for it.
+    /// Conforming + Ruppert/Shewchuk Delaunay refinement (off-centers, concentric shells)
+    /// inside the domain; output = the triangles of the domain only, holes removed.
     DELMESH_MODE2D_QUALITY = 2,
 }
 
@@ -24,14 +25,18 @@ pub enum DelmeshMode2d {
 #[repr(C)]
 pub struct DelmeshOptions2d {
     pub mode: DelmeshMode2d,
-    /// Quality mode: lower bound on triangle angles, in degrees; 0 = no angle criterion.
+    /// Quality mode: lower bound on triangle angles, in degrees, at most 34; 0 = no angle
+    /// criterion. Triangles skinny because of an input angle below 60 degrees may stay below
+    /// it. Other modes: ignored, but must be in [0, 60).
     pub min_angle_degrees: f64,
     /// Quality mode: upper bound on triangle areas; 0 = none.
     pub max_area: f64,
     /// Quality mode: `n_holes` (x, y) seeds; the region containing each is removed.
     pub holes: *const f64,
     pub n_holes: usize,
-    /// Quality mode: `n_regions` (x, y, label, max_area) seeds; max_area 0 = the global one.
+    /// Quality mode: `n_regions` (x, y, label, max_area) seeds; the triangles reachable from
+    /// a seed without crossing a segment get `label` (an integer) and `max_area` as their area
+    /// bound (0 = the global one). Triangles in no seeded region have label 1.
     pub regions: *const f64,
     pub n_regions: usize,
 }
@@ -49,19 +54,30 @@ pub struct DelmeshOptions2d {
 ///   Delaunay triangulation of the convex hull of all points. `delmesh_mesh_edges` lists the
 ///   sub-segments, input segment after input segment, each from its first point to its
 ///   second. The number of added points is `delmesh_mesh_vertex_count - n_points`.
-/// - QUALITY: not yet supported (DELMESH_ERROR_INVALID_ARGUMENT).
+/// - QUALITY: the conforming triangulation, then Delaunay refinement of the domain (Ruppert,
+///   with Shewchuk's concentric shells at small input angles and Üngör's off-centers): points
+///   are added until no triangle has an angle below `min_angle_degrees` or an area above its
+///   bound, except triangles that are skinny because of an input angle below 60 degrees. The
+///   domain is what is enclosed by segments: triangles reachable from the convex hull's
+///   outside or from a hole seed without crossing a segment are removed; with no segment the
+///   convex hull is the domain (its edges become segments). Every sub-segment stays strongly
+///   Delaunay-admissible: the triangles are those of the Delaunay triangulation of all output
+///   vertices that lie in the domain. Input points outside the domain are in no triangle.
 ///
 /// Output: vertices with z = 0; vertex `i < n_points` is input point `i`, added points
 /// follow. A point equal to an earlier one is merged onto it (`delmesh_mesh_duplicate_of`),
 /// keeps its slot and is used by nothing; segments through it use the earlier point and a
-/// repeated segment is listed once. Triangles are counter-clockwise, label 1. Vertex
-/// dimensions: 0 at segment ends, 1 for added points, 2 for other points, -1 for merged
-/// copies (and for every point in DELAUNAY mode). Deterministic.
+/// repeated segment is listed once. Triangles are counter-clockwise, label 1 (QUALITY: the
+/// region labels). Vertex dimensions: 0 at segment ends, 1 for points added on segments, 2 for
+/// other points, -1 for merged copies (and for every point in DELAUNAY mode). Deterministic.
 ///
 /// On success `*out` receives a new mesh owned by the caller (free it with
-/// `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xy`, `out` or
-/// (with `n_segments > 0`) `segments` -> DELMESH_ERROR_NULL_ARGUMENT; an unknown mode, a
-/// negative or non-finite option, or the QUALITY mode -> DELMESH_ERROR_INVALID_ARGUMENT; a
+/// `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xy`, `out`,
+/// (with `n_segments > 0`) `segments`, or in QUALITY mode (with a count > 0) `holes` or
+/// `regions` -> DELMESH_ERROR_NULL_ARGUMENT; an unknown mode, a negative or non-finite
+/// option, a QUALITY angle bound above 34 degrees, a non-integer region label ->
+/// DELMESH_ERROR_INVALID_ARGUMENT; refinement that does not finish within 2^24 added points
+/// -> DELMESH_ERROR_LIMIT; a
 /// non-finite coordinate or one of magnitude above 1e60, all points collinear, a segment
 /// index out of range, a zero-length segment, a point on a segment, or two crossing segments
 /// -> DELMESH_ERROR_INVALID_INPUT, the message naming the culprits.
@@ -94,9 +110,8 @@ pub unsafe extern "C" fn delmesh_triangulate_2d(
             DelmeshMode2d::DELMESH_MODE2D_DELAUNAY => mesh2d::delaunay_2d(xy)?,
             DelmeshMode2d::DELMESH_MODE2D_CONFORMING => mesh2d::conforming_2d(xy, segments)?.mesh,
             DelmeshMode2d::DELMESH_MODE2D_QUALITY => {
-                return Err(invalid(
-                    "options->mode: DELMESH_MODE2D_QUALITY is not yet supported",
-                ))
+                let quality = unsafe { quality_options(options) }?;
+                mesh2d::quality_2d(xy, segments, &quality)?.mesh
             }
         };
         *out = DelmeshMesh::into_raw(mesh);
@@ -134,6 +149,55 @@ unsafe fn mode_of(options: *const DelmeshOptions2d) -> Result<DelmeshMode2d, Fai
         )));
     }
     Ok(mode)
+}
+
+/// The quality criteria and seeds of the non-NULL `options`.
+///
+/// # Safety
+/// `options` points to a readable `DelmeshOptions2d` whose `holes` and `regions` are NULL or
+/// point to `2 * n_holes` and `4 * n_regions` readable doubles.
+unsafe fn quality_options(options: *const DelmeshOptions2d) -> Result<QualityOptions, Failure> {
+    // SAFETY: non-NULL (the QUALITY mode was read from it) and readable by contract.
+    let o = unsafe { &*options };
+    let holes = if o.n_holes == 0 {
+        &[][..]
+    } else {
+        unsafe { args::array(o.holes, o.n_holes, 2, "options->holes", "options->n_holes") }?
+    };
+    let regions = if o.n_regions == 0 {
+        &[][..]
+    } else {
+        unsafe {
+            args::array(
+                o.regions,
+                o.n_regions,
+                4,
+                "options->regions",
+                "options->n_regions",
+            )
+        }?
+    };
+    let mut seeds = Vec::with_capacity(o.n_regions);
+    for (k, r) in regions.chunks_exact(4).enumerate() {
+        let label = r[2];
+        if !(label.fract() == 0.0 && label.abs() <= i32::MAX as f64) {
+            return Err(invalid(&format!(
+                "options->regions[{k}]: label {label} is not a 32-bit integer"
+            )));
+        }
+        seeds.push(RegionSeed {
+            seed: [r[0], r[1]],
+            label: label as i32,
+            max_area: r[3],
+        });
+    }
+    Ok(QualityOptions {
+        min_angle_degrees: o.min_angle_degrees,
+        max_area: o.max_area,
+        holes: holes.chunks_exact(2).map(|h| [h[0], h[1]]).collect(),
+        regions: seeds,
+        off_centers: true,
+    })
 }
 
 fn invalid(message: &str) -> Failure {

@@ -107,6 +107,22 @@ impl<'a> Delaunay2d<'a> {
             .collect()
     }
 
+    /// Every live triangle, finite or infinite, renumbered compactly: its vertices and its
+    /// neighbours (same conventions as the module documentation).
+    pub fn compact(&self) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
+        let mut id = vec![NONE; self.tri.len()];
+        let live: Vec<usize> = (0..self.tri.len()).filter(|&t| self.alive[t]).collect();
+        for (new, &t) in live.iter().enumerate() {
+            id[t] = new as u32;
+        }
+        let tri = live.iter().map(|&t| self.tri[t]).collect();
+        let adj = live
+            .iter()
+            .map(|&t| self.adj[t].map(|n| id[n as usize]))
+            .collect();
+        (tri, adj)
+    }
+
     /// Every live triangle's directed edges: `(a, b)` -> (triangle, slot opposite the edge),
     /// for edges of finite and infinite triangles alike.
     pub fn directed_edges(&self) -> HashMap<(u32, u32), (u32, usize)> {

@@ -12,7 +12,10 @@
 //!   a bucket grid for the small-disk queries of §3.3), with a better `nettoyage` distance than
 //!   the paper's `d_i / 2`; Algorithm 3.1 as an option;
 //! - [`delaunay`]: the Delaunay triangulation itself (§1.2), Bowyer–Watson with a walk, ties
-//!   broken by a symbolic perturbation so that the output is a function of the point set.
+//!   broken by a symbolic perturbation so that the output is a function of the point set;
+//! - [`refine`]: quality triangulation of the domain (Ruppert's Delaunay refinement with
+//!   Shewchuk's concentric shells and Üngör's off-centers) on top of the conforming one, every
+//!   sub-segment kept strongly Delaunay-admissible ([`quality_2d`]).
 //!
 //! Invariants of a result (checked by [`validate_mesh`]): every triangle counter-clockwise
 //! (exact `orient2d > 0`) with vertex indices in range; input points first, in input order,
@@ -25,6 +28,7 @@ pub mod cloud;
 pub mod delaunay;
 pub mod exact;
 pub mod input;
+pub mod refine;
 pub mod subdivide;
 
 use crate::error::{Error, Result};
@@ -32,6 +36,7 @@ use crate::mesh::{Mesh, DIMENSION_UNKNOWN};
 use crate::predicates::{orient2d, Sign};
 use cloud::Cloud;
 use delaunay::{first_duplicates, Delaunay2d};
+use refine::{QualityOptions, RefinementReport, Refiner};
 use subdivide::{Algorithm, Subdivision, SubdivisionReport};
 
 /// Vertex dimension of an input point at a segment end (a corner).
@@ -89,6 +94,32 @@ pub fn conforming_2d_with(
     algorithm: Algorithm,
 ) -> Result<Conforming2d> {
     let points = input::points(xy)?;
+    let c = conform(points, segments, algorithm)?;
+    let dt = Delaunay2d::new(&c.all)?;
+    let edges = ordered_sub_edges(&c.sub, &c.segs, &c.origin, &c.all, dt.duplicate_of());
+    let mesh = mesh_of(&c.all, &dt, c.dims, edges);
+    validate_mesh(&mesh).map_err(|m| Error::internal(format!("conforming 2D result: {m}")))?;
+    Ok(Conforming2d {
+        inserted: c.all.len() - c.n_input,
+        degradation: degradation(&mesh),
+        subdivision: c.sub.report,
+        mesh,
+    })
+}
+
+/// Pébay's subdivision of the segments of checked input points.
+struct Conformed {
+    n_input: usize,
+    /// Input points then added points.
+    all: Vec<[f64; 2]>,
+    /// Kept segments (duplicates merged) and the input segment each comes from.
+    segs: Vec<[u32; 2]>,
+    origin: Vec<u32>,
+    dims: Vec<i8>,
+    sub: Subdivision,
+}
+
+fn conform(points: Vec<[f64; 2]>, segments: &[u32], algorithm: Algorithm) -> Result<Conformed> {
     let first = first_duplicates(&points);
     let cloud = cloud_of(&points, &first, segments.len() / 2);
     let (segs, origin) = input::segments(segments, &points, &first, &cloud)?;
@@ -96,22 +127,177 @@ pub fn conforming_2d_with(
     let mut sub = Subdivision::new(cloud, &segs, limit, algorithm);
     sub.run()?;
     let all = sub.cloud.points.clone();
-    let dt = Delaunay2d::new(&all)?;
     let mut dims = vec![DIMENSION_PLANE; all.len()];
     for s in &segs {
         dims[s[0] as usize] = DIMENSION_CORNER;
         dims[s[1] as usize] = DIMENSION_CORNER;
     }
     dims[points.len()..].fill(DIMENSION_SEGMENT);
-    let edges = ordered_sub_edges(&sub, &segs, &origin, &all, dt.duplicate_of());
-    let mesh = mesh_of(&all, &dt, dims, edges);
-    validate_mesh(&mesh).map_err(|m| Error::internal(format!("conforming 2D result: {m}")))?;
-    Ok(Conforming2d {
-        inserted: all.len() - points.len(),
-        degradation: degradation(&mesh),
-        subdivision: sub.report,
+    Ok(Conformed {
+        n_input: points.len(),
+        all,
+        segs,
+        origin,
+        dims,
+        sub,
+    })
+}
+
+/// The outcome of [`quality_2d`].
+#[derive(Clone, Debug)]
+pub struct Quality2d {
+    /// Triangles of the domain only, labeled by region; `edges` the sub-segments.
+    pub mesh: Mesh,
+    /// Points added by Pébay's subdivision, then by refinement.
+    pub conforming_points: usize,
+    pub refinement: RefinementReport,
+}
+
+/// Quality triangulation of the planar straight-line graph `xy`, `segments`: Pébay's
+/// conforming subdivision, then Delaunay refinement ([`refine`]) of the domain: the triangles
+/// not reachable from the outside or from a hole seed without crossing a segment. With no
+/// segment, the convex hull of the points bounds the domain (its edges become segments).
+pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Result<Quality2d> {
+    options.check()?;
+    let points = input::points(xy)?;
+    let hull;
+    let segments = if segments.is_empty() {
+        hull = hull_segments(&points)?;
+        &hull[..]
+    } else {
+        segments
+    };
+    let c = conform(points, segments, Algorithm::ClosedNodes)?;
+    let n_all = c.all.len();
+    let dt = Delaunay2d::new(&c.all)?;
+    let duplicate_of = dt.duplicate_of().to_vec();
+    let compact = dt.compact();
+    let mut on_segment = vec![u32::MAX; n_all];
+    let mut sub_edges = Vec::new();
+    for (a, b, s) in c.sub.sub_edges() {
+        for v in [a, b] {
+            if v as usize >= c.n_input {
+                on_segment[v as usize] = s;
+            }
+        }
+        sub_edges.push([duplicate_of[a as usize], duplicate_of[b as usize]]);
+    }
+    let mut r = Refiner::new(
+        c.all.clone(),
+        compact,
+        c.segs.clone(),
+        on_segment,
+        &sub_edges,
+    )?;
+    for corner in enclosing_box(&c.all) {
+        r.insert_outside(corner)?;
+    }
+    r.assign_regions(options);
+    r.run(options)?;
+    // Four far corners enclose everything, so that no point added on a segment is ever on the
+    // convex hull (rounding would make the hull concave there). In the output numbering the
+    // box corners (n_all..n_all + 4) are left out.
+    let renumber = |v: u32| if v as usize >= n_all { v - 4 } else { v };
+    let mut dims = c.dims;
+    for (i, &d) in duplicate_of.iter().enumerate() {
+        if d as usize != i {
+            dims[i] = DIMENSION_UNKNOWN;
+        }
+    }
+    let points: Vec<[f64; 2]> = r.points[..n_all]
+        .iter()
+        .chain(&r.points[n_all + 4..])
+        .copied()
+        .collect();
+    for v in n_all + 4..r.points.len() {
+        dims.push(if r.on_segment[v] == u32::MAX {
+            DIMENSION_PLANE
+        } else {
+            DIMENSION_SEGMENT
+        });
+    }
+    let (triangles, triangle_labels) = r.domain_triangles();
+    let triangles: Vec<u32> = triangles.into_iter().map(renumber).collect();
+    let subs: Vec<(u32, u32, u32)> = r
+        .sub_segments()
+        .into_iter()
+        .map(|(a, b, s)| (renumber(a), renumber(b), s))
+        .collect();
+    let edges = ordered_segments(&subs, &r.segments, &c.origin, &points);
+    let mut full_duplicate_of = duplicate_of;
+    full_duplicate_of.extend((n_all as u32)..(points.len() as u32));
+    let mesh = Mesh {
+        vertices: points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect(),
+        vertex_dimensions: dims,
+        triangles,
+        triangle_labels,
+        edges,
+        duplicate_of: full_duplicate_of,
+        ..Mesh::default()
+    };
+    validate_mesh(&mesh).map_err(|m| Error::internal(format!("quality 2D result: {m}")))?;
+    Ok(Quality2d {
+        conforming_points: n_all - c.n_input,
+        refinement: r.report,
         mesh,
     })
+}
+
+/// The corners of a square 64 times as wide as the bounding box of `points`, around it.
+fn enclosing_box(points: &[[f64; 2]]) -> [[f64; 2]; 4] {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in points {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let c = [(lo[0] + hi[0]) * 0.5, (lo[1] + hi[1]) * 0.5];
+    let side = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+    let r = 32.0 * if side > 0.0 { side } else { 1.0 };
+    [
+        [c[0] - r, c[1] - r],
+        [c[0] + r, c[1] - r],
+        [c[0] + r, c[1] + r],
+        [c[0] - r, c[1] + r],
+    ]
+}
+
+/// The edges of the convex hull of `points`, as segments (index pairs).
+fn hull_segments(points: &[[f64; 2]]) -> Result<Vec<u32>> {
+    let dt = Delaunay2d::new(points)?;
+    let (tri, _) = dt.compact();
+    let mut out = Vec::new();
+    for v in tri {
+        if let Some(k) = v.iter().position(|&x| x == delaunay::INFINITE) {
+            out.extend([v[(k + 1) % 3], v[(k + 2) % 3]]);
+        }
+    }
+    Ok(out)
+}
+
+/// Sub-segments `(a, b, segment)` ordered by input segment and along it from its first end,
+/// oriented that way.
+fn ordered_segments(
+    subs: &[(u32, u32, u32)],
+    segs: &[[u32; 2]],
+    origin: &[u32],
+    points: &[[f64; 2]],
+) -> Vec<u32> {
+    let mut keyed: Vec<(u32, f64, u32, u32)> = subs
+        .iter()
+        .map(|&(a, b, s)| {
+            let [p, q] = segs[s as usize].map(|i| points[i as usize]);
+            let along = |i: u32| {
+                let x = points[i as usize];
+                (x[0] - p[0]) * (q[0] - p[0]) + (x[1] - p[1]) * (q[1] - p[1])
+            };
+            let (a, b) = if along(a) <= along(b) { (a, b) } else { (b, a) };
+            (origin[s as usize], along(a), a, b)
+        })
+        .collect();
+    keyed.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
+    keyed.into_iter().flat_map(|(_, _, a, b)| [a, b]).collect()
 }
 
 /// The grid of the input points, copies of an earlier point left out of the buckets.
