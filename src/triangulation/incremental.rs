@@ -146,11 +146,11 @@ impl Triangulation<'static> {
         Ok(())
     }
 
-    /// Applies the pending re-weighting of `v`: the heavier copy replaces it (`v` becomes
-    /// hidden); returns the copy's vertex id.
+    /// Applies the pending re-weighting of `v`: the heavier copy replaces it (`v` is removed
+    /// from the point set); returns the copy's vertex id.
     pub fn commit_reweight(&mut self, v: u32) -> Result<u32> {
         let q = self.commit()?;
-        self.state[v as usize] = PointState::Hidden;
+        self.state[v as usize] = PointState::Removed;
         Ok(q)
     }
 

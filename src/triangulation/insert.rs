@@ -204,20 +204,25 @@ impl Triangulation<'_> {
         let v = self.tets.vertices(t);
         let q = self.point(p);
         match v.iter().position(|&x| x == INFINITE) {
-            None => {
-                if self.is_regular() {
-                    let w = v.map(|x| self.weighted(x));
-                    power_test_sos(&w[0], &w[1], &w[2], &w[3], &self.weighted(p)) == Sign::Positive
-                } else {
-                    let [a, b, c, d] = v.map(|x| self.point(x));
-                    self.filter.insphere_sos(a, b, c, d, q) == Sign::Positive
-                }
-            }
+            None => self.finite_conflict(v, p),
             Some(k) => match self.orient_with(t, k, q) {
                 Sign::Positive => true,
                 Sign::Negative => false,
                 Sign::Zero => self.in_conflict_coplanar(FACE[k].map(|j| v[j]), p),
             },
+        }
+    }
+
+    /// Whether `p` is in conflict with the finite, positively oriented tetrahedron `v` (its
+    /// vertices need not form a tetrahedron of this triangulation).
+    #[inline]
+    pub(super) fn finite_conflict(&self, v: [u32; 4], p: u32) -> bool {
+        if self.is_regular() {
+            let w = v.map(|x| self.weighted(x));
+            power_test_sos(&w[0], &w[1], &w[2], &w[3], &self.weighted(p)) == Sign::Positive
+        } else {
+            let [a, b, c, d] = v.map(|x| self.point(x));
+            self.filter.insphere_sos(a, b, c, d, self.point(p)) == Sign::Positive
         }
     }
 

@@ -18,6 +18,7 @@
 
 mod incremental;
 mod insert;
+mod remove;
 mod sort;
 pub mod tets;
 mod validate;
@@ -67,6 +68,8 @@ pub enum PointState {
     Duplicate(u32),
     /// A weighted point whose power cell is empty at insertion.
     Hidden,
+    /// A vertex since removed (`Triangulation::remove`).
+    Removed,
 }
 
 /// A 3D Delaunay or regular triangulation of borrowed points.

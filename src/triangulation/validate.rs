@@ -27,6 +27,7 @@ impl Triangulation<'_> {
                 PointState::Inserted => used[i] || self.is_regular(),
                 PointState::Duplicate(w) => !used[i] && self.input[*w as usize] == self.input[i],
                 PointState::Hidden => !used[i] && self.is_regular(),
+                PointState::Removed => !used[i],
             };
             if !ok {
                 return Err(format!("point {i} is {s:?} but used = {}", used[i]));
@@ -112,7 +113,11 @@ impl Triangulation<'_> {
         }
         for v in 0..self.points.len() as u32 {
             let i = self.input_index(v);
-            if used[i as usize] || matches!(self.state[v as usize], PointState::Duplicate(_)) {
+            let not_hidden = matches!(
+                self.state[v as usize],
+                PointState::Duplicate(_) | PointState::Removed
+            );
+            if used[i as usize] || not_hidden {
                 continue;
             }
             match self.locate(v) {
