@@ -1,5 +1,5 @@
-/* Benchmark (not a test): the optimization after refinement alone, delmesh's sliver exudation
- * (its default optimization) against CGAL Mesh_3's perturb_mesh_3 + exude_mesh_3 (the default
+/* Benchmark (not a test): the optimization after refinement alone, delmesh's sliver
+ * perturbation and exudation (its default optimization) against CGAL Mesh_3's perturb_mesh_3 + exude_mesh_3 (the default
  * optimizers of make_mesh_3), on the same shapes with the same criteria (METRICS.md "Speed and
  * memory", "Quality").
  *
@@ -181,7 +181,7 @@ int main(int argc, char **argv) {
   }
   close(fd);
 
-  printf("delmesh %s exudation vs CGAL Mesh_3 perturb_mesh_3 + exude_mesh_3 (sequential, no time limits)\n",
+  printf("delmesh %s perturbation + exudation vs CGAL Mesh_3 perturb_mesh_3 + exude_mesh_3 (sequential, no time limits)\n",
          delmesh_version_string());
   printf("each run in its own process; %d repetitions, alternating; medians. delmesh's time = run with its default\n"
          "optimization - run with optimization 0; CGAL's = its two calls on the refined complex.\n\n",

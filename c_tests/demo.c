@@ -390,10 +390,11 @@ static int run_oracle(const DemoShape *shape, const char *out_path) {
   failed |= !agree;
   int radius_edge_ok = q.max_radius_edge <= shape->radius_edge * (1 + ROUNDING);
   int angle_ok = facet_angle >= shape->facet_angle * (1 - ROUNDING);
-  /* The cell size bound holds for the refined mesh; sliver exudation (on by default) flips
-   * slivers away without moving a vertex and may enlarge a few circumballs past it. */
+  /* The cell size bound holds for the refined mesh; sliver perturbation and exudation (on by
+   * default) move interior vertices a little and flip slivers away, which may enlarge a few
+   * circumballs past it. */
   printf("criteria:    radius-edge %.4f <= %g: %s; facet angle %.2f >= %g: %s; largest "
-         "circumradius %.4f (cell size %g before exudation)\n",
+         "circumradius %.4f (cell size %g before optimization)\n",
          q.max_radius_edge, shape->radius_edge, yes_no(radius_edge_ok), facet_angle,
          shape->facet_angle, yes_no(angle_ok), q.max_circumradius, shape->cell_size);
   failed |= !radius_edge_ok || !angle_ok;

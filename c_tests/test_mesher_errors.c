@@ -123,7 +123,6 @@ static void mesher_errors(void) {
   expect(delmesh_mesher_set_surface_sliver_angle(m, NAN), DELMESH_ERROR_INVALID_ARGUMENT, "surface sliver angle NaN", "surface sliver");
   expect(delmesh_mesher_set_sizing_field(m, 7, size_field, NULL), DELMESH_ERROR_INVALID_ARGUMENT, "sizing field for criterion 7", "7");
   expect(delmesh_mesher_set_sizing_field(m, DELMESH_SIZING_CELL_SIZE, NULL, NULL), DELMESH_ERROR_NULL_ARGUMENT, "NULL sizing field", "`f`");
-  expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_PERTURB, 0), DELMESH_ERROR_INVALID_ARGUMENT, "perturbation (not available)", "not available");
   expect(delmesh_mesher_set_optimization(m, 64, 0), DELMESH_ERROR_INVALID_ARGUMENT, "unknown optimization flag", "unknown");
   expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_EXUDE, -1), DELMESH_ERROR_INVALID_ARGUMENT, "negative time limit", "time limit");
   expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_EXUDE, NAN), DELMESH_ERROR_INVALID_ARGUMENT, "NaN time limit", "time limit");

@@ -56,8 +56,9 @@
 #define DELMESH_OPTIMIZE_EXUDE 1
 
 /*
- `delmesh_mesher_set_optimization` flag: vertex perturbation (not available yet: setting it
- is `DELMESH_ERROR_INVALID_ARGUMENT`).
+ `delmesh_mesher_set_optimization` flag: sliver perturbation (vertices inside a subdomain
+ move a little where their cells are better; surface vertices never move). On by default;
+ it runs before exudation.
  */
 #define DELMESH_OPTIMIZE_PERTURB 2
 
@@ -604,7 +605,7 @@ void delmesh_mesher_free(struct DelmeshMesher *m);
 /*
  A new mesher with no bound set but the facet topology criterion (every vertex of a
  surface facet lies on the surface, as in CGAL Mesh_3) and the surface sliver bound (15
- degrees, `delmesh_mesher_set_surface_sliver_angle`); sliver exudation on. Set at least a
+ degrees, `delmesh_mesher_set_surface_sliver_angle`); sliver perturbation and exudation on. Set at least a
  facet size or distance and a cell bound for a useful mesh.
 
  Errors: NULL `out` -> `DELMESH_ERROR_NULL_ARGUMENT`.
@@ -616,7 +617,7 @@ enum DelmeshStatus delmesh_mesher_new(struct DelmeshMesher **out);
 
 /*
  Meshes domain `d` with the criteria of `m`, then runs the optimization passes
- (`delmesh_mesher_set_optimization`; by default sliver exudation): a tetrahedral mesh of every subdomain
+ (`delmesh_mesher_set_optimization`; by default sliver perturbation and exudation): a tetrahedral mesh of every subdomain
  (labels > 0), the surface and interface facets with their label pairs, vertex
  dimensions 2 (surface) and 3 (volume); only used vertices, numbered compactly. The same
  mesher and domain give bit-identical arrays.
@@ -703,13 +704,14 @@ enum DelmeshStatus delmesh_mesher_set_facet_topology(struct DelmeshMesher *m,
 enum DelmeshStatus delmesh_mesher_set_max_vertices(struct DelmeshMesher *m, size_t max_vertices);
 
 /*
- Selects the optimization passes run after refinement: `flags` is 0 (none) or
- DELMESH_OPTIMIZE_EXUDE (the default); `time_limit_seconds` bounds each pass (0: no limit;
- a pass stopped by it gives a result that depends on the machine's speed). Passes keep the
- boundary and interface facets and every subdomain's volume exactly.
+ Selects the optimization passes run after refinement: `flags` is 0 (none) or a union of
+ DELMESH_OPTIMIZE_PERTURB and DELMESH_OPTIMIZE_EXUDE (both: the default, as in CGAL Mesh_3;
+ perturbation runs first); `time_limit_seconds` bounds each pass (0: no limit; a pass
+ stopped by it gives a result that depends on the machine's speed). Passes keep the boundary
+ and interface facets (the same vertices, bit for bit) and every subdomain's volume.
 
- Errors: NULL `m`; DELMESH_OPTIMIZE_PERTURB (not available yet) or an unknown flag, a
- negative or NaN time limit -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+ Errors: NULL `m`; an unknown flag, a negative or NaN time limit ->
+ `DELMESH_ERROR_INVALID_ARGUMENT`.
 
  # Safety
  `m` is NULL or a live mesher.

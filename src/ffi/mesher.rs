@@ -20,8 +20,9 @@ pub const DELMESH_SIZING_CELL_SIZE: i32 = 3;
 /// `delmesh_mesher_set_optimization` flag: sliver exudation (vertex weights chosen to flip
 /// slivers away; no point added or moved). On by default.
 pub const DELMESH_OPTIMIZE_EXUDE: i32 = 1;
-/// `delmesh_mesher_set_optimization` flag: vertex perturbation (not available yet: setting it
-/// is `DELMESH_ERROR_INVALID_ARGUMENT`).
+/// `delmesh_mesher_set_optimization` flag: sliver perturbation (vertices inside a subdomain
+/// move a little where their cells are better; surface vertices never move). On by default;
+/// it runs before exudation.
 pub const DELMESH_OPTIMIZE_PERTURB: i32 = 2;
 
 /// Progress phase: the initial surface points are inserted.
@@ -72,7 +73,7 @@ pub struct DelmeshMesher {
 
 /// A new mesher with no bound set but the facet topology criterion (every vertex of a
 /// surface facet lies on the surface, as in CGAL Mesh_3) and the surface sliver bound (15
-/// degrees, `delmesh_mesher_set_surface_sliver_angle`); sliver exudation on. Set at least a
+/// degrees, `delmesh_mesher_set_surface_sliver_angle`); sliver perturbation and exudation on. Set at least a
 /// facet size or distance and a cell bound for a useful mesh.
 ///
 /// Errors: NULL `out` -> `DELMESH_ERROR_NULL_ARGUMENT`.
@@ -275,13 +276,14 @@ pub unsafe extern "C" fn delmesh_mesher_set_sizing_field(
     unsafe { with_mesher("delmesh_mesher_set_sizing_field", m, set) }
 }
 
-/// Selects the optimization passes run after refinement: `flags` is 0 (none) or
-/// DELMESH_OPTIMIZE_EXUDE (the default); `time_limit_seconds` bounds each pass (0: no limit;
-/// a pass stopped by it gives a result that depends on the machine's speed). Passes keep the
-/// boundary and interface facets and every subdomain's volume exactly.
+/// Selects the optimization passes run after refinement: `flags` is 0 (none) or a union of
+/// DELMESH_OPTIMIZE_PERTURB and DELMESH_OPTIMIZE_EXUDE (both: the default, as in CGAL Mesh_3;
+/// perturbation runs first); `time_limit_seconds` bounds each pass (0: no limit; a pass
+/// stopped by it gives a result that depends on the machine's speed). Passes keep the boundary
+/// and interface facets (the same vertices, bit for bit) and every subdomain's volume.
 ///
-/// Errors: NULL `m`; DELMESH_OPTIMIZE_PERTURB (not available yet) or an unknown flag, a
-/// negative or NaN time limit -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+/// Errors: NULL `m`; an unknown flag, a negative or NaN time limit ->
+/// `DELMESH_ERROR_INVALID_ARGUMENT`.
 ///
 /// # Safety
 /// `m` is NULL or a live mesher.
@@ -294,12 +296,7 @@ pub unsafe extern "C" fn delmesh_mesher_set_optimization(
     let set = |m: &mut DelmeshMesher| {
         let invalid =
             |message: String| Failure::new(DelmeshStatus::DELMESH_ERROR_INVALID_ARGUMENT, message);
-        if flags & DELMESH_OPTIMIZE_PERTURB != 0 {
-            return Err(invalid(
-                "DELMESH_OPTIMIZE_PERTURB: vertex perturbation is not available yet".into(),
-            ));
-        }
-        if flags & !DELMESH_OPTIMIZE_EXUDE != 0 {
+        if flags & !(DELMESH_OPTIMIZE_EXUDE | DELMESH_OPTIMIZE_PERTURB) != 0 {
             return Err(invalid(format!("flags = {flags:#x} has unknown bits")));
         }
         if !(time_limit_seconds >= 0.0 && time_limit_seconds.is_finite()) {
@@ -307,9 +304,12 @@ pub unsafe extern "C" fn delmesh_mesher_set_optimization(
                 "time limit {time_limit_seconds} must be finite and non-negative (0: none)"
             )));
         }
-        m.optimization.exude = flags & DELMESH_OPTIMIZE_EXUDE != 0;
-        m.optimization.exude_options.time_limit = (time_limit_seconds > 0.0)
+        let limit = (time_limit_seconds > 0.0)
             .then(|| std::time::Duration::from_secs_f64(time_limit_seconds));
+        m.optimization.exude = flags & DELMESH_OPTIMIZE_EXUDE != 0;
+        m.optimization.exude_options.time_limit = limit;
+        m.optimization.perturb = flags & DELMESH_OPTIMIZE_PERTURB != 0;
+        m.optimization.perturb_options.time_limit = limit;
         Ok(())
     };
     unsafe { with_mesher("delmesh_mesher_set_optimization", m, set) }
@@ -355,7 +355,7 @@ pub unsafe extern "C" fn delmesh_mesher_set_progress(
 }
 
 /// Meshes domain `d` with the criteria of `m`, then runs the optimization passes
-/// (`delmesh_mesher_set_optimization`; by default sliver exudation): a tetrahedral mesh of every subdomain
+/// (`delmesh_mesher_set_optimization`; by default sliver perturbation and exudation): a tetrahedral mesh of every subdomain
 /// (labels > 0), the surface and interface facets with their label pairs, vertex
 /// dimensions 2 (surface) and 3 (volume); only used vertices, numbered compactly. The same
 /// mesher and domain give bit-identical arrays.

@@ -24,6 +24,9 @@ pub enum Conflicts {
     Cavity,
     /// The point coincides with this vertex; nothing is marked.
     Duplicate(u32),
+    /// The weighted point's power cell would be empty (regular triangulations); nothing is
+    /// marked.
+    Hidden,
 }
 
 impl Triangulation<'static> {
@@ -64,6 +67,12 @@ impl Triangulation<'static> {
     /// the tetrahedra in conflict with it. On `Cavity`, exactly one of [`Self::commit`] or
     /// [`Self::abandon`] must follow before anything else changes the triangulation.
     pub fn find_conflicts(&mut self, q: Point, near: u32) -> Result<Conflicts> {
+        self.find_conflicts_weighted(q, 0.0, near)
+    }
+
+    /// [`Self::find_conflicts`] for a point of weight `w` (regular triangulations; ignored in
+    /// Delaunay ones).
+    pub fn find_conflicts_weighted(&mut self, q: Point, w: f64, near: u32) -> Result<Conflicts> {
         if !inside(&q, &self.bounds.0, &self.bounds.1) || !q.iter().all(|c| c.is_finite()) {
             return Err(Error::internal(format!(
                 "refinement point {q:?} lies outside the box {:?}",
@@ -75,7 +84,7 @@ impl Triangulation<'static> {
         self.order.push(p);
         self.state.push(PointState::Pending);
         if self.is_regular() {
-            self.weights.push(0.0);
+            self.weights.push(w);
         }
         if self.tets.is_live(near) {
             self.hint = near;
@@ -91,7 +100,7 @@ impl Triangulation<'static> {
                 }
                 super::insert::Located::Hidden => {
                     self.forget_point();
-                    return Err(Error::internal("a Delaunay point cannot be hidden"));
+                    return Ok(Conflicts::Hidden);
                 }
             }
         };
@@ -170,6 +179,11 @@ impl Triangulation<'static> {
             }
         }
         star
+    }
+
+    /// Whether `p` lies in the box every vertex must lie in.
+    pub fn in_bounds(&self, p: &Point) -> bool {
+        inside(p, &self.bounds.0, &self.bounds.1) && p.iter().all(|c| c.is_finite())
     }
 
     /// The tetrahedra in conflict with the pending point.

@@ -1,9 +1,10 @@
-//! Sliver exudation (src/optimize/exude.rs): it raises the smallest dihedral angle of refined
-//! meshes, keeps their boundary and interface facets and subdomain volumes, and is deterministic.
+//! The optimization passes (src/optimize/): perturbation and exudation raise the smallest
+//! dihedral angle of refined meshes, keep their boundary and interface facets, surface vertices
+//! and subdomain volumes, meet the radius-edge bound, and are deterministic.
 
 use delmesh::criteria::Criteria;
 use delmesh::domain::{BBox, FunctionDomain, Oracle};
-use delmesh::optimize::{exude, ExudeOptions};
+use delmesh::optimize::{exude, optimize, perturb, ExudeOptions, Optimization, PerturbOptions};
 use delmesh::quality::Quality;
 use delmesh::refine::{refine_complex, Limits};
 use delmesh::Mesh;
@@ -61,25 +62,52 @@ fn volumes(m: &Mesh) -> BTreeMap<i32, f64> {
     v
 }
 
-fn exuded(d: &FunctionDomain, size: f64) -> (Mesh, Mesh) {
+#[derive(Clone, Copy, Debug)]
+enum Pass {
+    Exude,
+    Perturb,
+    Default,
+}
+
+/// The refined mesh, and the same after `pass`.
+fn optimized(d: &FunctionDomain, size: f64, pass: Pass) -> (Mesh, Mesh) {
     let cr = criteria(size);
     let c = refine_complex(d, &cr, Limits::default()).unwrap();
     let before = c.to_mesh();
     let mut labeled = c.into_labeled();
-    let report = exude(&mut labeled, &cr, &ExudeOptions::default()).unwrap();
+    match pass {
+        Pass::Exude => drop(exude(&mut labeled, &cr, &ExudeOptions::default()).unwrap()),
+        Pass::Perturb => drop(perturb(&mut labeled, &cr, &PerturbOptions::default()).unwrap()),
+        Pass::Default => optimize(&mut labeled, &cr, &Optimization::default()).unwrap(),
+    }
     labeled.tri.validate().unwrap();
     let after = labeled.to_mesh();
     let (qb, qa) = (Quality::of(&before), Quality::of(&after));
     eprintln!(
-        "{report:?}: min dihedral {:.2} -> {:.2}, below 5/10/15: {:?} -> {:?}",
+        "{pass:?}: min dihedral {:.2} -> {:.2}, below 5/10/15: {:?} -> {:?}",
         qb.min_dihedral, qa.min_dihedral, qb.dihedral_below, qa.dihedral_below
     );
     (before, after)
 }
 
+/// The coordinates (as bits) of the vertices of dimension 2, sorted.
+fn surface_vertices(m: &Mesh) -> Vec<[u64; 3]> {
+    let mut out: Vec<[u64; 3]> = (0..m.vertex_count() as u32)
+        .filter(|&v| m.vertex_dimensions[v as usize] == 2)
+        .map(|v| m.vertex(v).map(f64::to_bits))
+        .collect();
+    out.sort_unstable();
+    out
+}
+
 fn check(before: &Mesh, after: &Mesh) {
     after.validate().unwrap();
     assert_eq!(facet_set(before), facet_set(after), "the boundary changed");
+    assert_eq!(
+        surface_vertices(before),
+        surface_vertices(after),
+        "a surface vertex moved"
+    );
     let (vb, va) = (volumes(before), volumes(after));
     for (l, v) in &vb {
         assert!(
@@ -107,7 +135,7 @@ fn check(before: &Mesh, after: &Mesh) {
 #[test]
 fn exudation_removes_slivers_of_a_sphere_and_keeps_its_boundary() {
     let d = domain(Oracle::Implicit(Box::new(|p: &P| norm2(p) - 1.0)));
-    let (before, after) = exuded(&d, 0.1);
+    let (before, after) = optimized(&d, 0.1, Pass::Exude);
     check(&before, &after);
 }
 
@@ -119,8 +147,23 @@ fn exudation_keeps_interfaces_between_subdomains() {
         _ => 0,
     };
     let d = domain(Oracle::Labels(Box::new(f)));
-    let (before, after) = exuded(&d, 0.1);
-    check(&before, &after);
-    let (_, again) = exuded(&d, 0.1);
-    assert!(after == again, "two runs differ");
+    for pass in [Pass::Exude, Pass::Perturb, Pass::Default] {
+        let (before, after) = optimized(&d, 0.1, pass);
+        check(&before, &after);
+        let (_, again) = optimized(&d, 0.1, pass);
+        assert!(after == again, "two runs of {pass:?} differ");
+    }
+}
+
+#[test]
+fn perturbation_and_the_default_passes_remove_slivers_of_a_torus() {
+    let torus = |p: &P| {
+        let q = (p[0] * p[0] + p[1] * p[1]).sqrt() - 1.0;
+        q * q + p[2] * p[2] - 0.35 * 0.35
+    };
+    let d = domain(Oracle::Implicit(Box::new(torus)));
+    for pass in [Pass::Perturb, Pass::Default] {
+        let (before, after) = optimized(&d, 0.08, pass);
+        check(&before, &after);
+    }
 }
