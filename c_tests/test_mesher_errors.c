@@ -124,6 +124,9 @@ static void mesher_errors(void) {
   expect(delmesh_mesher_set_sizing_field(m, 7, size_field, NULL), DELMESH_ERROR_INVALID_ARGUMENT, "sizing field for criterion 7", "7");
   expect(delmesh_mesher_set_sizing_field(m, DELMESH_SIZING_CELL_SIZE, NULL, NULL), DELMESH_ERROR_NULL_ARGUMENT, "NULL sizing field", "`f`");
   expect(delmesh_mesher_set_optimization(m, 64, 0), DELMESH_ERROR_INVALID_ARGUMENT, "unknown optimization flag", "unknown");
+  check_case(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_ODT | DELMESH_OPTIMIZE_PERTURB | DELMESH_OPTIMIZE_EXUDE, 10) ==
+                 DELMESH_OK,
+             "all optimization passes with a time limit accepted");
   expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_EXUDE, -1), DELMESH_ERROR_INVALID_ARGUMENT, "negative time limit", "time limit");
   expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_EXUDE, NAN), DELMESH_ERROR_INVALID_ARGUMENT, "NaN time limit", "time limit");
   expect(delmesh_mesher_set_optimization(NULL, 0, 0), DELMESH_ERROR_NULL_ARGUMENT, "optimization, NULL mesher", "`m`");

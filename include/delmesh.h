@@ -56,6 +56,13 @@
 #define DELMESH_OPTIMIZE_EXUDE 1
 
 /*
+ `delmesh_mesher_set_optimization` flag: optimal Delaunay triangulation smoothing of the
+ vertices inside subdomains (two sweeps; surface vertices never move). Off by default; it
+ runs before perturbation.
+ */
+#define DELMESH_OPTIMIZE_ODT 4
+
+/*
  `delmesh_mesher_set_optimization` flag: sliver perturbation (vertices inside a subdomain
  move a little where their cells are better; surface vertices never move). On by default;
  it runs before exudation.
@@ -705,8 +712,8 @@ enum DelmeshStatus delmesh_mesher_set_max_vertices(struct DelmeshMesher *m, size
 
 /*
  Selects the optimization passes run after refinement: `flags` is 0 (none) or a union of
- DELMESH_OPTIMIZE_PERTURB and DELMESH_OPTIMIZE_EXUDE (both: the default, as in CGAL Mesh_3;
- perturbation runs first); `time_limit_seconds` bounds each pass (0: no limit; a pass
+ DELMESH_OPTIMIZE_ODT, DELMESH_OPTIMIZE_PERTURB and DELMESH_OPTIMIZE_EXUDE (perturbation and
+ exudation: the default, as in CGAL Mesh_3; they run in that order); `time_limit_seconds` bounds each pass (0: no limit; a pass
  stopped by it gives a result that depends on the machine's speed). Passes keep the boundary
  and interface facets (the same vertices, bit for bit) and every subdomain's volume.
 

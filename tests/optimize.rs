@@ -4,7 +4,9 @@
 
 use delmesh::criteria::Criteria;
 use delmesh::domain::{BBox, FunctionDomain, Oracle};
-use delmesh::optimize::{exude, optimize, perturb, ExudeOptions, Optimization, PerturbOptions};
+use delmesh::optimize::{
+    exude, optimize, perturb, smooth, ExudeOptions, Optimization, PerturbOptions, SmoothOptions,
+};
 use delmesh::quality::Quality;
 use delmesh::refine::{refine_complex, Limits};
 use delmesh::Mesh;
@@ -66,7 +68,9 @@ fn volumes(m: &Mesh) -> BTreeMap<i32, f64> {
 enum Pass {
     Exude,
     Perturb,
+    Smooth,
     Default,
+    All,
 }
 
 /// The refined mesh, and the same after `pass`.
@@ -78,7 +82,15 @@ fn optimized(d: &FunctionDomain, size: f64, pass: Pass) -> (Mesh, Mesh) {
     match pass {
         Pass::Exude => drop(exude(&mut labeled, &cr, &ExudeOptions::default()).unwrap()),
         Pass::Perturb => drop(perturb(&mut labeled, &cr, &PerturbOptions::default()).unwrap()),
+        Pass::Smooth => drop(smooth(&mut labeled, &cr, &SmoothOptions::default()).unwrap()),
         Pass::Default => optimize(&mut labeled, &cr, &Optimization::default()).unwrap(),
+        Pass::All => {
+            let all = Optimization {
+                smooth: true,
+                ..Optimization::default()
+            };
+            optimize(&mut labeled, &cr, &all).unwrap()
+        }
     }
     labeled.tri.validate().unwrap();
     let after = labeled.to_mesh();
@@ -166,4 +178,43 @@ fn perturbation_and_the_default_passes_remove_slivers_of_a_torus() {
         let (before, after) = optimized(&d, 0.08, pass);
         check(&before, &after);
     }
+}
+
+/// The mean radius ratio (3 inradius / circumradius) of the tetrahedra.
+fn mean_radius_ratio(m: &Mesh) -> f64 {
+    let sum: f64 = m
+        .tetrahedra
+        .chunks_exact(4)
+        .map(|t| delmesh::quality::tetrahedron([0, 1, 2, 3].map(|k| m.vertex(t[k]))).radius_ratio)
+        .sum();
+    sum / m.tetrahedron_count() as f64
+}
+
+#[test]
+fn odt_smoothing_improves_the_mean_shape_and_keeps_the_boundary() {
+    let d = domain(Oracle::Implicit(Box::new(|p: &P| norm2(p) - 1.0)));
+    let (before, after) = optimized(&d, 0.1, Pass::Smooth);
+    after.validate().unwrap();
+    assert_eq!(
+        facet_set(&before),
+        facet_set(&after),
+        "the boundary changed"
+    );
+    assert_eq!(
+        surface_vertices(&before),
+        surface_vertices(&after),
+        "a surface vertex moved"
+    );
+    let (mb, ma) = (mean_radius_ratio(&before), mean_radius_ratio(&after));
+    eprintln!("mean radius ratio {mb:.4} -> {ma:.4}");
+    assert!(ma > mb, "mean radius ratio {mb} -> {ma}");
+    let (qb, qa) = (Quality::of(&before), Quality::of(&after));
+    assert!(
+        qa.min_dihedral >= qb.min_dihedral,
+        "{} -> {}",
+        qb.min_dihedral,
+        qa.min_dihedral
+    );
+    let (all_before, all) = optimized(&d, 0.1, Pass::All);
+    check(&all_before, &all);
 }

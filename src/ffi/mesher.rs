@@ -24,6 +24,10 @@ pub const DELMESH_OPTIMIZE_EXUDE: i32 = 1;
 /// move a little where their cells are better; surface vertices never move). On by default;
 /// it runs before exudation.
 pub const DELMESH_OPTIMIZE_PERTURB: i32 = 2;
+/// `delmesh_mesher_set_optimization` flag: optimal Delaunay triangulation smoothing of the
+/// vertices inside subdomains (two sweeps; surface vertices never move). Off by default; it
+/// runs before perturbation.
+pub const DELMESH_OPTIMIZE_ODT: i32 = 4;
 
 /// Progress phase: the initial surface points are inserted.
 pub const DELMESH_PHASE_INITIAL: i32 = 0;
@@ -277,8 +281,8 @@ pub unsafe extern "C" fn delmesh_mesher_set_sizing_field(
 }
 
 /// Selects the optimization passes run after refinement: `flags` is 0 (none) or a union of
-/// DELMESH_OPTIMIZE_PERTURB and DELMESH_OPTIMIZE_EXUDE (both: the default, as in CGAL Mesh_3;
-/// perturbation runs first); `time_limit_seconds` bounds each pass (0: no limit; a pass
+/// DELMESH_OPTIMIZE_ODT, DELMESH_OPTIMIZE_PERTURB and DELMESH_OPTIMIZE_EXUDE (perturbation and
+/// exudation: the default, as in CGAL Mesh_3; they run in that order); `time_limit_seconds` bounds each pass (0: no limit; a pass
 /// stopped by it gives a result that depends on the machine's speed). Passes keep the boundary
 /// and interface facets (the same vertices, bit for bit) and every subdomain's volume.
 ///
@@ -296,7 +300,8 @@ pub unsafe extern "C" fn delmesh_mesher_set_optimization(
     let set = |m: &mut DelmeshMesher| {
         let invalid =
             |message: String| Failure::new(DelmeshStatus::DELMESH_ERROR_INVALID_ARGUMENT, message);
-        if flags & !(DELMESH_OPTIMIZE_EXUDE | DELMESH_OPTIMIZE_PERTURB) != 0 {
+        let known = DELMESH_OPTIMIZE_ODT | DELMESH_OPTIMIZE_PERTURB | DELMESH_OPTIMIZE_EXUDE;
+        if flags & !known != 0 {
             return Err(invalid(format!("flags = {flags:#x} has unknown bits")));
         }
         if !(time_limit_seconds >= 0.0 && time_limit_seconds.is_finite()) {
@@ -310,6 +315,8 @@ pub unsafe extern "C" fn delmesh_mesher_set_optimization(
         m.optimization.exude_options.time_limit = limit;
         m.optimization.perturb = flags & DELMESH_OPTIMIZE_PERTURB != 0;
         m.optimization.perturb_options.time_limit = limit;
+        m.optimization.smooth = flags & DELMESH_OPTIMIZE_ODT != 0;
+        m.optimization.smooth_options.time_limit = limit;
         Ok(())
     };
     unsafe { with_mesher("delmesh_mesher_set_optimization", m, set) }

@@ -8,7 +8,10 @@
 //!   triangulation into a regular one, changed by flips only, chosen to raise the smallest
 //!   dihedral angle around the worst slivers.
 //!
-//! They run in CGAL's order: perturbation, then exudation.
+//! - [`smooth`]: optimal Delaunay triangulation smoothing of the vertices inside subdomains,
+//!   off by default.
+//!
+//! They run in CGAL's order: smoothing, perturbation, then exudation.
 //!
 //! Every pass keeps the boundary and interface facets and the subdomain of every point of the
 //! domain exactly: a change whose cells would not keep the facets between different labels is
@@ -17,9 +20,12 @@
 pub mod exude;
 mod local;
 pub mod perturb;
+mod relocate;
+pub mod smooth;
 
 pub use exude::{exude, ExudeOptions, ExudeReport};
 pub use perturb::{perturb, PerturbOptions, PerturbReport};
+pub use smooth::{smooth, SmoothOptions, SmoothReport};
 
 use crate::criteria::Criteria;
 use crate::error::Result;
@@ -28,6 +34,8 @@ use crate::refine::Labeled;
 /// Which passes run after refinement, and for how long at most.
 #[derive(Clone, Copy, Debug)]
 pub struct Optimization {
+    pub smooth: bool,
+    pub smooth_options: SmoothOptions,
     pub perturb: bool,
     pub perturb_options: PerturbOptions,
     pub exude: bool,
@@ -35,9 +43,11 @@ pub struct Optimization {
 }
 
 impl Default for Optimization {
-    /// Perturbation and exudation, as CGAL Mesh_3's defaults.
+    /// Perturbation and exudation, as CGAL Mesh_3's defaults; no smoothing.
     fn default() -> Self {
         Optimization {
+            smooth: false,
+            smooth_options: SmoothOptions::default(),
             perturb: true,
             perturb_options: PerturbOptions::default(),
             exude: true,
@@ -48,6 +58,9 @@ impl Default for Optimization {
 
 /// Runs the selected passes on `m`, refined to meet `criteria` (which the passes keep).
 pub fn optimize(m: &mut Labeled, criteria: &Criteria, o: &Optimization) -> Result<()> {
+    if o.smooth {
+        smooth(m, criteria, &o.smooth_options)?;
+    }
     if o.perturb {
         perturb(m, criteria, &o.perturb_options)?;
     }

@@ -16,19 +16,13 @@
 use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
-use super::local::{
-    commit_labels, cone_labels, dot, keeps_interfaces, min_dihedral, nearest_neighbour2,
-    star_quality, sub, SliverQueue,
-};
-use crate::criteria::{circumcenter, Criteria};
-use crate::error::{Error, Result};
+use super::local::{dot, nearest_neighbour2, sub, SliverQueue};
+use super::relocate::{movable_star, relocate, Gain, Outcome};
+use crate::criteria::Criteria;
+use crate::error::Result;
 use crate::predicates::Point;
 use crate::quality;
 use crate::refine::Labeled;
-use crate::triangulation::Conflicts;
-
-/// Vertex dimension of points inside a subdomain (the only ones moved).
-const VOLUME: i8 = 3;
 
 /// Steps tried, as fractions of the distance to the nearest neighbour.
 const STEPS: [f64; 3] = [0.1, 0.25, 0.5];
@@ -127,119 +121,18 @@ fn corners(m: &Labeled, t: u32) -> [[u64; 3]; 4] {
     c
 }
 
-/// What [`try_vertex`] did.
-enum Outcome {
-    /// The vertex cannot be moved (on the surface, next to another subdomain, on the hull).
-    Skipped,
-    /// The vertex moved; the created tetrahedra are its new star and the rest of the hole.
-    Moved,
-    /// No position improved: the vertex is back where it was, under a new id.
-    Restored,
-}
-
-/// Tries to move vertex `v` of the sliver `t`.
+/// Tries to move vertex `v` of the sliver `t` along the directions of [`directions`].
 fn try_vertex(m: &mut Labeled, criteria: &Criteria, v: u32, t: u32) -> Result<Outcome> {
-    if v == u32::MAX || m.dimension[v as usize] != VOLUME {
+    let Some(star) = movable_star(m, v, t) else {
         return Ok(Outcome::Skipped);
-    }
-    let star = m.tri.star(v, t);
-    let label = m.label[star[0] as usize];
-    if label <= 0 || star.iter().any(|&s| m.label[s as usize] != label) {
-        return Ok(Outcome::Skipped);
-    }
-    let current = star_quality(m, &star);
+    };
     let origin = *m.tri.vertex(v);
-    let weight = m.tri.weight(v);
     let spacing = nearest_neighbour2(m, v, &star).sqrt();
-    let directions = directions(m, v, t);
-    if !m.tri.remove(v, t)? {
-        return Ok(Outcome::Skipped);
-    }
-    let hole = m.tri.created().to_vec();
-    for &h in &hole {
-        relabel(m, h, label);
-    }
-    let mut best: Option<(Point, f64)> = None;
-    for d in &directions {
-        for step in STEPS {
-            let p: Point = std::array::from_fn(|k| origin[k] + step * spacing * d[k]);
-            if !m.tri.in_bounds(&p) {
-                continue;
-            }
-            if let Some(q) = evaluate(m, criteria, v, &p, &hole)? {
-                if q > current && best.is_none_or(|(_, b)| q > b) {
-                    best = Some((p, q));
-                }
-            }
-        }
-    }
-    match best {
-        Some((p, _)) => {
-            insert(m, v, p, 0.0, hole[0])?;
-            Ok(Outcome::Moved)
-        }
-        None => {
-            insert(m, v, origin, weight, hole[0])?;
-            Ok(Outcome::Restored)
-        }
-    }
-}
-
-/// The cells changed by inserting `p` into the hole left by `v`: their smallest dihedral
-/// angle, or `None` when the insertion is refused.
-fn evaluate(
-    m: &mut Labeled,
-    criteria: &Criteria,
-    v: u32,
-    p: &Point,
-    hole: &[u32],
-) -> Result<Option<f64>> {
-    if m.tri.find_conflicts_weighted(*p, 0.0, hole[0])? != Conflicts::Cavity {
-        return Ok(None);
-    }
-    let labels = cone_labels(m);
-    let mut quality = None;
-    if keeps_interfaces(m, v, &labels) {
-        let mut q = 180.0f64;
-        let mut shape_ok = true;
-        for ((verts, _, _), &l) in m.tri.cavity_cone().iter().zip(&labels) {
-            if l > 0 {
-                let pts = verts.map(|x| m.tri.vertex(x));
-                shape_ok &= criteria.cell_shape_holds(pts, &circumcenter(pts));
-                q = q.min(quality::min_dihedral(pts.map(|x| *x)));
-            }
-        }
-        // What is left of the hole stays.
-        for &h in hole {
-            if !m.tri.in_cavity(h) && m.label[h as usize] > 0 {
-                q = q.min(min_dihedral(m, m.tri.tets().vertices(h)));
-            }
-        }
-        quality = shape_ok.then_some(q);
-    }
-    m.tri.abandon();
-    Ok(quality)
-}
-
-/// Inserts the moved (or restored) vertex with weight `w` and labels its cells; `v` is the
-/// vertex it stands for.
-fn insert(m: &mut Labeled, v: u32, p: Point, w: f64, near: u32) -> Result<()> {
-    if m.tri.find_conflicts_weighted(p, w, near)? != Conflicts::Cavity {
-        return Err(Error::internal(format!(
-            "vertex {v} cannot be inserted back at {p:?}"
-        )));
-    }
-    let labels = cone_labels(m);
-    m.tri.commit()?;
-    commit_labels(m, &labels, m.dimension[v as usize]);
-    Ok(())
-}
-
-fn relabel(m: &mut Labeled, t: u32, label: i32) {
-    if m.label.len() <= t as usize {
-        m.label.resize(m.tri.tets().slots(), 0);
-    }
-    m.label[t as usize] = label;
+    let candidates: Vec<Point> = directions(m, v, t)
+        .iter()
+        .flat_map(|d| STEPS.map(|step| std::array::from_fn(|k| origin[k] + step * spacing * d[k])))
+        .collect();
+    relocate(m, criteria, v, t, &star, &candidates, Gain::Strict)
 }
 
 /// Unit directions to try for `v` in the sliver `t`: the gradient of the sliver's smallest
