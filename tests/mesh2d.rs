@@ -59,16 +59,17 @@ fn in_closed_small_disk(a: [f64; 2], b: [f64; 2], q: [f64; 2]) -> bool {
 }
 
 /// Every constraint sub-edge of `mesh` is strongly Delaunay-admissible relative to all its
-/// vertices: its closed small disk holds no other vertex (checked in rationals, by brute
+/// vertices (those a triangle or an edge uses; in quality mode, input points outside the
+/// domain are used by nothing): its closed small disk holds no other vertex (checked in rationals, by brute
 /// force), or else it is in the Delaunay cover of the vertices (an edge of the triangulation
 /// whose two triangles are not cocircular, or a hull edge).
 fn assert_admissible(mesh: &Mesh, case: &str) {
     let n = mesh.vertex_count() as u32;
-    let used: Vec<u32> = (0..n)
-        .filter(|&i| mesh.duplicate_of.is_empty() || mesh.duplicate_of[i as usize] == i)
-        .collect();
+    let referenced: HashSet<u32> = mesh.triangles.iter().chain(&mesh.edges).copied().collect();
+    let used: Vec<u32> = (0..n).filter(|i| referenced.contains(i)).collect();
     let points: Vec<[f64; 2]> = (0..n).map(|i| vertex2(mesh, i)).collect();
-    let dt = Delaunay2d::new(&points).expect("triangulation of the output vertices");
+    let dt = Delaunay2d::of_subset(&points, |i| referenced.contains(&i))
+        .expect("triangulation of the output vertices");
     let edges = dt.directed_edges();
     for (e, edge) in mesh.edges.chunks_exact(2).enumerate() {
         let (a, b) = (points[edge[0] as usize], points[edge[1] as usize]);

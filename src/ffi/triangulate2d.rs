@@ -54,15 +54,17 @@ pub struct DelmeshOptions2d {
 ///   Delaunay triangulation of the convex hull of all points. `delmesh_mesh_edges` lists the
 ///   sub-segments, input segment after input segment, each from its first point to its
 ///   second. The number of added points is `delmesh_mesh_vertex_count - n_points`.
-/// - QUALITY: the conforming triangulation, then Delaunay refinement of the domain (Ruppert,
-///   with Shewchuk's concentric shells at small input angles and Üngör's off-centers): points
+/// - QUALITY: the segments are split (at midpoints, or at concentric shells around acute
+///   angles) until they are Delaunay edges, then the domain is refined (Ruppert's Delaunay
+///   refinement, Shewchuk's concentric shells at small input angles, Üngör's off-centers): points
 ///   are added until no triangle has an angle below `min_angle_degrees` or an area above its
 ///   bound, except triangles that are skinny because of an input angle below 60 degrees. The
 ///   domain is what is enclosed by segments: triangles reachable from the convex hull's
 ///   outside or from a hole seed without crossing a segment are removed; with no segment the
-///   convex hull is the domain (its edges become segments). Every sub-segment stays strongly
-///   Delaunay-admissible: the triangles are those of the Delaunay triangulation of all output
-///   vertices that lie in the domain. Input points outside the domain are in no triangle.
+///   convex hull is the domain (its edges become segments). Input points outside the domain
+///   are in no triangle and constrain nothing. Every sub-segment is strongly
+///   Delaunay-admissible (in every Delaunay triangulation of the vertices that triangles and
+///   sub-segments use), and every triangle has an empty circumcircle.
 ///
 /// Output: vertices with z = 0; vertex `i < n_points` is input point `i`, added points
 /// follow. A point equal to an earlier one is merged onto it (`delmesh_mesh_duplicate_of`),

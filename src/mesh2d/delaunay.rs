@@ -58,6 +58,12 @@ impl<'a> Delaunay2d<'a> {
     /// points are merged onto the first in index order ([`Self::duplicate_of`]). Fails when
     /// the points do not span the plane.
     pub fn new(points: &'a [[f64; 2]]) -> Result<Self> {
+        Self::of_subset(points, |_| true)
+    }
+
+    /// The Delaunay triangulation of the points `i` with `keep(i)` (the others are no
+    /// vertex; [`Self::duplicate_of`] is NONE for them), as [`Self::new`].
+    pub fn of_subset(points: &'a [[f64; 2]], keep: impl Fn(u32) -> bool) -> Result<Self> {
         let mut t = Delaunay2d {
             points,
             tri: Vec::new(),
@@ -75,7 +81,10 @@ impl<'a> Delaunay2d<'a> {
             created: Vec::new(),
         };
         let first = first_duplicates(points);
-        let order = hilbert_order(points);
+        let order: Vec<u32> = hilbert_order(points)
+            .into_iter()
+            .filter(|&i| keep(first[i as usize]))
+            .collect();
         let seed = t.seed(&order, &first)?;
         for &i in &order {
             if seed.contains(&i) {
@@ -87,7 +96,7 @@ impl<'a> Delaunay2d<'a> {
             t.insert(i)?;
         }
         for (i, &f) in first.iter().enumerate() {
-            if f as usize != i {
+            if f as usize != i && keep(f) {
                 t.duplicate_of[i] = f;
             }
         }

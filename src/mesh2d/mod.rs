@@ -148,15 +148,17 @@ fn conform(points: Vec<[f64; 2]>, segments: &[u32], algorithm: Algorithm) -> Res
 pub struct Quality2d {
     /// Triangles of the domain only, labeled by region; `edges` the sub-segments.
     pub mesh: Mesh,
-    /// Points added by Pébay's subdivision, then by refinement.
+    /// Points added on the segments before refinement (the first phase of [`refine`]).
     pub conforming_points: usize,
     pub refinement: RefinementReport,
 }
 
-/// Quality triangulation of the planar straight-line graph `xy`, `segments`: Pébay's
-/// conforming subdivision, then Delaunay refinement ([`refine`]) of the domain: the triangles
-/// not reachable from the outside or from a hole seed without crossing a segment. With no
-/// segment, the convex hull of the points bounds the domain (its edges become segments).
+/// Quality triangulation of the planar straight-line graph `xy`, `segments` (phases in
+/// [`refine`]): the segments split until they are Delaunay edges, then Delaunay refinement of
+/// the domain: the triangles not reachable from the outside or from a hole seed without
+/// crossing a segment. With no segment, the convex hull of the points bounds the domain (its
+/// edges become segments). Input points outside the domain are in no triangle and constrain
+/// nothing. Every sub-segment is in every Delaunay triangulation of the mesh's vertices.
 pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Result<Quality2d> {
     options.check()?;
     let points = input::points(xy)?;
@@ -167,38 +169,52 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
     } else {
         segments
     };
-    let c = conform(points, segments, Algorithm::ClosedNodes)?;
-    let n_all = c.all.len();
-    let dt = Delaunay2d::new(&c.all)?;
-    let duplicate_of = dt.duplicate_of().to_vec();
-    let compact = dt.compact();
-    let mut on_segment = vec![u32::MAX; n_all];
-    let mut sub_edges = Vec::new();
-    for (a, b, s) in c.sub.sub_edges() {
-        for v in [a, b] {
-            if v as usize >= c.n_input {
-                on_segment[v as usize] = s;
-            }
-        }
-        sub_edges.push([duplicate_of[a as usize], duplicate_of[b as usize]]);
+    let n_input = points.len();
+    let first = first_duplicates(&points);
+    let cloud = cloud_of(&points, &first, segments.len() / 2);
+    let (segs, origin) = input::segments(segments, &points, &first, &cloud)?;
+    // Ruppert's first phase on the segment points only; the other input points are inserted
+    // afterwards without crossing a segment, so that points outside the domain split nothing.
+    let mut on_any = vec![false; n_input];
+    for s in &segs {
+        on_any[s[0] as usize] = true;
+        on_any[s[1] as usize] = true;
     }
-    let mut r = Refiner::new(
-        c.all.clone(),
-        compact,
-        c.segs.clone(),
-        on_segment,
-        &sub_edges,
-    )?;
-    for corner in enclosing_box(&c.all) {
+    let mut cloud = grid_of(&points, segs.len(), |i| on_any[i]);
+    let limit = ADDED_POINTS_PER_ITEM.saturating_mul(n_input + segs.len());
+    let (subs, added_on) = refine::split_segments(&mut cloud, &segs, limit)?;
+    let all = cloud.points;
+    let n_all = all.len();
+    let dt = Delaunay2d::of_subset(&all, |i| i as usize >= n_input || on_any[i as usize])?;
+    let compact = dt.compact();
+    let mut duplicate_of = first.clone();
+    duplicate_of.extend((n_input as u32)..(n_all as u32));
+    let mut on_segment = vec![u32::MAX; n_input];
+    on_segment.extend(added_on);
+    let sub_edges: Vec<[u32; 2]> = subs.iter().map(|s| [s[0], s[1]]).collect();
+    let mut dims = vec![DIMENSION_PLANE; n_all];
+    for s in &segs {
+        dims[s[0] as usize] = DIMENSION_CORNER;
+        dims[s[1] as usize] = DIMENSION_CORNER;
+    }
+    dims[n_input..].fill(DIMENSION_SEGMENT);
+    let mut r = Refiner::new(all.clone(), compact, segs, on_segment, &sub_edges)?;
+    // Four far corners enclose everything, so that no point added on a segment is ever on the
+    // convex hull (rounding would make the hull concave there).
+    for corner in enclosing_box(&all) {
         r.insert_outside(corner)?;
     }
+    // The other input points: those outside the domain are left out (in no triangle, they
+    // constrain nothing).
     r.assign_regions(options);
+    for i in 0..n_input {
+        if !on_any[i] && first[i] as usize == i {
+            r.insert_if_inside(i as u32)?;
+        }
+    }
     r.run(options)?;
-    // Four far corners enclose everything, so that no point added on a segment is ever on the
-    // convex hull (rounding would make the hull concave there). In the output numbering the
-    // box corners (n_all..n_all + 4) are left out.
+    // In the output numbering the box corners (n_all..n_all + 4) are left out.
     let renumber = |v: u32| if v as usize >= n_all { v - 4 } else { v };
-    let mut dims = c.dims;
     for (i, &d) in duplicate_of.iter().enumerate() {
         if d as usize != i {
             dims[i] = DIMENSION_UNKNOWN;
@@ -223,7 +239,7 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         .into_iter()
         .map(|(a, b, s)| (renumber(a), renumber(b), s))
         .collect();
-    let edges = ordered_segments(&subs, &r.segments, &c.origin, &points);
+    let edges = ordered_segments(&subs, &r.segments, &origin, &points);
     let mut full_duplicate_of = duplicate_of;
     full_duplicate_of.extend((n_all as u32)..(points.len() as u32));
     let mesh = Mesh {
@@ -235,9 +251,9 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         duplicate_of: full_duplicate_of,
         ..Mesh::default()
     };
-    validate_mesh(&mesh).map_err(|m| Error::internal(format!("quality 2D result: {m}")))?;
+    validate_triangles(&mesh).map_err(|m| Error::internal(format!("quality 2D result: {m}")))?;
     Ok(Quality2d {
-        conforming_points: n_all - c.n_input,
+        conforming_points: n_all - n_input,
         refinement: r.report,
         mesh,
     })
@@ -302,6 +318,11 @@ fn ordered_segments(
 
 /// The grid of the input points, copies of an earlier point left out of the buckets.
 fn cloud_of(points: &[[f64; 2]], first: &[u32], n_segments: usize) -> Cloud {
+    grid_of(points, n_segments, |i| first[i] as usize == i)
+}
+
+/// The grid of the input points, those with `!indexed(i)` left out of the buckets.
+fn grid_of(points: &[[f64; 2]], n_segments: usize, indexed: impl Fn(usize) -> bool) -> Cloud {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for p in points {
         for k in 0..2 {
@@ -314,7 +335,7 @@ fn cloud_of(points: &[[f64; 2]], first: &[u32], n_segments: usize) -> Cloud {
     }
     let mut cloud = Cloud::new(lo, hi, points.len() + n_segments);
     for (i, p) in points.iter().enumerate() {
-        if first[i] as usize == i {
+        if indexed(i) {
             cloud.push(*p);
         } else {
             cloud.push_unindexed(*p);
@@ -374,16 +395,7 @@ fn mesh_of(points: &[[f64; 2]], dt: &Delaunay2d, mut dims: Vec<i8>, edges: Vec<u
 /// Checks the invariants of a 2D result listed in the module documentation (but
 /// admissibility, which the tests check): the error names the first culprit.
 pub fn validate_mesh(mesh: &Mesh) -> std::result::Result<(), String> {
-    mesh.validate()?;
-    let p = |i: u32| {
-        let v = mesh.vertex(i);
-        [v[0], v[1]]
-    };
-    for (t, tri) in mesh.triangles.chunks_exact(3).enumerate() {
-        if orient2d(&p(tri[0]), &p(tri[1]), &p(tri[2])) != Sign::Positive {
-            return Err(format!("triangle {t} {tri:?} is not counter-clockwise"));
-        }
-    }
+    validate_triangles(mesh)?;
     let mut sides = std::collections::HashSet::new();
     for tri in mesh.triangles.chunks_exact(3) {
         for k in 0..3 {
@@ -395,6 +407,22 @@ pub fn validate_mesh(mesh: &Mesh) -> std::result::Result<(), String> {
             return Err(format!(
                 "constraint edge {e} {edge:?} is not a triangle edge"
             ));
+        }
+    }
+    Ok(())
+}
+
+/// [`validate_mesh`] but the constraint edges (in quality mode, segments outside the domain
+/// are in no triangle).
+pub fn validate_triangles(mesh: &Mesh) -> std::result::Result<(), String> {
+    mesh.validate()?;
+    let p = |i: u32| {
+        let v = mesh.vertex(i);
+        [v[0], v[1]]
+    };
+    for (t, tri) in mesh.triangles.chunks_exact(3).enumerate() {
+        if orient2d(&p(tri[0]), &p(tri[1]), &p(tri[2])) != Sign::Positive {
+            return Err(format!("triangle {t} {tri:?} is not counter-clockwise"));
         }
     }
     Ok(())

@@ -8,38 +8,54 @@
 //! architecture of Rineau's thesis §5.4, sub-segments are the first level and triangles the
 //! second: a triangle is refined only when no sub-segment is encroached.
 //!
-//! The input is Pébay's conforming Delaunay triangulation ([`super::subdivide`]); its
-//! sub-segments become constrained edges, and refinement proceeds on that constrained Delaunay
-//! triangulation:
-//! - a sub-segment is *encroached* when a vertex lies in its closed small disk (the disk of
-//!   diameter the sub-segment); it is split, at a power-of-two distance from its end when that
-//!   end is an input point where segments meet (concentric shells, so that sub-segments around
-//!   a small angle end on common circles), else at its midpoint;
-//! - a triangle of the domain is *bad* when its smallest angle is below the bound or its area
-//!   above the bound of its region; it is split at its off-center (the point on the bisector of
-//!   its shortest edge from which that edge is seen under slightly more than the bound), or at
-//!   its circumcenter when that is nearer or the angle is fine. A point that would encroach
-//!   sub-segments is not inserted: they are split instead, and the triangle is reconsidered;
-//! - a triangle that is bad by angle only and whose shortest edge joins two points on
-//!   segments sharing an end, at equal distances from it (within [`SHELL_TOLERANCE`]), is
-//!   skinny because of a small input angle: splitting it would not terminate. It is dropped
-//!   and counted ([`RefinementReport::rejected_forever`]).
+//! Phases ([`super::quality_2d`]):
+//! 1. [`split_segments`]: the input segments are split at concentric shells or midpoints until
+//!    every sub-segment is strongly Delaunay-admissible (Pébay's Theorem 2.1) relative to the
+//!    points on segments; the Delaunay triangulation of those points then contains every
+//!    sub-segment. (Pébay's projections, used by the conforming mode, would leave short
+//!    sub-segments near acute angles, which refinement propagates into many small triangles.)
+//! 2. [`Refiner`]: the sub-segments become constrained edges; four far corners enclose
+//!    everything (so that no split point rounds onto a concave hull); regions are flooded
+//!    from the outside, the hole seeds and the region seeds; the input points off the segments
+//!    that lie in the domain are inserted (the others are left out: they constrain nothing).
+//! 3. [`Refiner::run`], in the level order of Rineau's thesis §5.4 (sub-segments first, then
+//!    triangles):
+//!    - a sub-segment is split when a vertex of a triangle on a side of it in the domain lies
+//!      in its closed small disk (the disk of diameter the sub-segment: Ruppert's
+//!      encroachment), or when it is not strictly locally Delaunay (its two apices cocircular
+//!      with its ends, or one inside the other's circle: then it would not be in every
+//!      Delaunay triangulation). It is split at a power-of-two distance from its end when
+//!      that end is an input point where two segments form an acute angle (concentric
+//!      shells, so that sub-segments around a small angle end on common circles), else at its
+//!      midpoint;
+//!    - a triangle of the domain is *bad* when its smallest angle is below the bound or its
+//!      area above the bound of its region; it is split at its off-center (the point on the
+//!      bisector of its shortest edge from which that edge is seen under slightly more than
+//!      the bound) when the angle is bad and that is nearer than the circumcenter, else at its
+//!      circumcenter. A point that would encroach sub-segments is not inserted: they are split
+//!      instead, and the triangle is reconsidered;
+//!    - a triangle bad by angle only whose shortest edge joins two points on segments sharing
+//!      an end, at equal distances from it (within [`SHELL_TOLERANCE`]), is skinny because of
+//!      a small input angle: splitting it would not terminate. It is dropped and counted
+//!      ([`RefinementReport::rejected_forever`]).
 //!
 //! Invariants. Between two steps, every sub-segment is an edge of the triangulation and every
-//! other edge is locally Delaunay (symbolic perturbation as in [`super::delaunay`]); the
-//! domain is the set of triangles reachable from no hole seed and not from the outside without
-//! crossing a sub-segment, and a triangle's region never changes (cavities never cross a
-//! sub-segment but the one being split). At the end no sub-segment is encroached: the two
-//! apices of every sub-segment lie outside its closed small disk, so every sub-segment is
-//! strongly Delaunay-admissible (type 0) and the constrained triangulation is the Delaunay
-//! triangulation of all its vertices — the result is still conforming.
+//! other edge is locally Delaunay (symbolic perturbation as in [`super::delaunay`]); a
+//! triangle's region never changes (cavities never cross a sub-segment but the one being
+//! split, whose two sides are then refilled from their own side). At the end every edge is
+//! locally Delaunay, the sub-segments strictly: the triangulation is the Delaunay
+//! triangulation of its vertices and every sub-segment is in all of them (strongly
+//! Delaunay-admissible) — the result is still conforming, and every triangle of the domain has
+//! an empty circumcircle.
 
 use std::collections::{BinaryHeap, HashMap, VecDeque};
 
+use super::classify::classify_with;
+use super::cloud::Cloud;
 use super::delaunay::INFINITE;
 use super::exact::{dot_sign, incircle_sos};
 use crate::error::{Error, ErrorKind, Result};
-use crate::predicates::{orient2d, Sign};
+use crate::predicates::{incircle, orient2d, Sign};
 
 /// No triangle, no segment.
 const NONE: u32 = u32::MAX;
@@ -192,6 +208,8 @@ pub struct Refiner {
     pub on_segment: Vec<u32>,
     /// Input segments at each input point (empty for others).
     incident: Vec<Vec<u32>>,
+    /// Whether each input point is the apex of an acute angle between two segments.
+    acute: Vec<bool>,
     /// The input segments (point pairs).
     pub segments: Vec<[u32; 2]>,
     corner_pairs: HashMap<(u32, u32), u32>,
@@ -239,10 +257,12 @@ impl Refiner {
             corner_pairs.insert((s[0].min(s[1]), s[0].max(s[1])), k as u32);
         }
         let count = tri.len();
+        let acute = acute_apices(&points, &segments);
         let mut r = Refiner {
             points,
             on_segment,
             incident,
+            acute,
             segments,
             corner_pairs,
             tri,
@@ -344,8 +364,39 @@ impl Refiner {
                 "point {p:?} is not outside the convex hull"
             )));
         };
-        self.fill(p, NONE, &cavity, &boundary);
+        let i = self.push_point(p, NONE);
+        self.fill(i, &cavity, &boundary);
         Ok(())
+    }
+
+    /// Inserts the point `i` of the point list (not yet a vertex, inside the convex hull of
+    /// the vertices) without crossing a sub-segment, if it lies in the domain; returns whether
+    /// it does.
+    pub fn insert_if_inside(&mut self, i: u32) -> Result<bool> {
+        let p = self.points[i as usize];
+        let start = (0..self.tri.len() as u32)
+            .find(|&t| self.alive[t as usize] && !self.tri[t as usize].contains(&INFINITE));
+        let walk = start.map(|t| self.walk(t, &p, false));
+        if let Some(Walk::Inside(t)) = walk {
+            if self.region[t as usize] == 0 {
+                return Ok(false);
+            }
+        }
+        let cavity = match walk {
+            Some(Walk::Inside(t))
+                if !self.tri[t as usize]
+                    .iter()
+                    .any(|&v| self.points[v as usize] == p) =>
+            {
+                self.cavity(&[t], &p)
+            }
+            _ => None,
+        };
+        let Some((cavity, boundary)) = cavity else {
+            return Err(Error::internal(format!("point {i} could not be inserted")));
+        };
+        self.fill(i, &cavity, &boundary);
+        Ok(true)
     }
 
     /// Assigns regions: 0 to the outside (reached from an infinite triangle without crossing
@@ -460,14 +511,28 @@ impl Refiner {
         dot_sign(self.p(a), self.p(b), q) != Sign::Positive
     }
 
-    /// Whether the sub-segment opposite slot `k` of `t` has an apex in its closed small disk.
+    /// Whether the sub-segment opposite slot `k` of `t` must be split: an apex on a side in
+    /// the domain lies in its closed small disk (Ruppert's encroachment), or it is not strictly
+    /// locally Delaunay (its two apices cocircular with it, or one inside the other's circle),
+    /// which would let it out of some Delaunay triangulation of the vertices.
     fn apex_encroached(&self, t: u32, k: usize) -> bool {
         let v = self.tri[t as usize];
         let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
         let (u, l) = self.across(t, k);
-        [v[k], self.tri[u as usize][l]]
-            .iter()
-            .any(|&c| c != INFINITE && self.encroaches(a, b, &self.points[c as usize]))
+        let (c, d) = (v[k], self.tri[u as usize][l]);
+        for (apex, side) in [(c, t), (d, u)] {
+            if apex != INFINITE
+                && self.region[side as usize] != 0
+                && self.encroaches(a, b, &self.points[apex as usize])
+            {
+                return true;
+            }
+        }
+        if c == INFINITE || d == INFINITE {
+            return false;
+        }
+        // (a, b, c) is counter-clockwise.
+        incircle(self.p(a), self.p(b), self.p(c), self.p(d)) != Sign::Negative
     }
 
     /// Whether triangle `t`'s conflict with `p` holds (see [`super::delaunay`]).
@@ -560,20 +625,18 @@ impl Refiner {
         }
     }
 
-    /// Replaces the cavity by the fan from the new point `p` (on input segment `on`, or
-    /// NONE); returns the new point and the new triangles.
-    fn fill(
-        &mut self,
-        p: [f64; 2],
-        on: u32,
-        cavity: &[u32],
-        boundary: &[(u32, usize)],
-    ) -> (u32, Vec<u32>) {
-        let i = self.points.len() as u32;
+    /// Adds the point `p` (on input segment `on`, or NONE) to the point list; returns its
+    /// index.
+    fn push_point(&mut self, p: [f64; 2], on: u32) -> u32 {
         self.points.push(p);
         self.on_segment.push(on);
         self.incident.push(Vec::new());
         self.vtri.push(NONE);
+        (self.points.len() - 1) as u32
+    }
+
+    /// Replaces the cavity by the fan from point `i`; returns the new triangles.
+    fn fill(&mut self, i: u32, cavity: &[u32], boundary: &[(u32, usize)]) -> Vec<u32> {
         let mut starts = HashMap::with_capacity(boundary.len());
         let mut created = Vec::with_capacity(boundary.len());
         for &(t, k) in boundary {
@@ -611,7 +674,7 @@ impl Refiner {
                 }
             }
         }
-        (i, created)
+        created
     }
 
     /// The input segment the sub-segment `(a, b)` is part of.
@@ -628,30 +691,14 @@ impl Refiner {
             .unwrap_or(NONE)
     }
 
-    /// Whether `v` is an input point where two segments or more meet (a shell centre).
+    /// Whether `v` is an input point where two segments meet at an acute angle (a centre of
+    /// concentric shells).
     fn is_apex(&self, v: u32) -> bool {
-        self.on_segment[v as usize] == NONE && self.incident[v as usize].len() >= 2
+        self.acute.get(v as usize).copied().unwrap_or(false)
     }
 
-    /// Where to split the sub-segment `(a, b)`: at the power of two nearest to half its
-    /// length from its end when exactly one end is an apex, else at its midpoint.
     fn split_point(&self, a: u32, b: u32) -> [f64; 2] {
-        let (pa, pb) = (*self.p(a), *self.p(b));
-        let (from, to) = match (self.is_apex(a), self.is_apex(b)) {
-            (true, false) => (pa, pb),
-            (false, true) => (pb, pa),
-            _ => return [(pa[0] + pb[0]) * 0.5, (pa[1] + pb[1]) * 0.5],
-        };
-        let length = (to[0] - from[0]).hypot(to[1] - from[1]);
-        let d = (length * 0.5).log2().round().exp2();
-        let t = d / length;
-        if !(t > 0.25 && t < 0.75) {
-            return [(pa[0] + pb[0]) * 0.5, (pa[1] + pb[1]) * 0.5];
-        }
-        [
-            from[0] + t * (to[0] - from[0]),
-            from[1] + t * (to[1] - from[1]),
-        ]
+        split_point(*self.p(a), *self.p(b), self.is_apex(a), self.is_apex(b))
     }
 
     /// Splits the sub-segment `(a, b)` if it still exists; returns whether it was split.
@@ -676,7 +723,8 @@ impl Refiner {
             return Ok(false);
         };
         let on = self.segment_of(a, b);
-        let (_, created) = self.fill(m, on, &cavity, &boundary);
+        let i = self.push_point(m, on);
+        let created = self.fill(i, &cavity, &boundary);
         self.report.segment_splits += 1;
         for &new in &created {
             let v = self.tri[new as usize];
@@ -894,7 +942,8 @@ impl Refiner {
             return Ok(());
         }
         self.budget()?;
-        let (_, created) = self.fill(x, NONE, &cavity, &boundary);
+        let i = self.push_point(x, NONE);
+        let created = self.fill(i, &cavity, &boundary);
         self.report.interior_points += 1;
         if off {
             self.report.off_centers += 1;
@@ -974,4 +1023,111 @@ impl Refiner {
         }
         out
     }
+}
+
+/// For each point of `points`, whether two of the `segments` at it form an acute angle.
+pub fn acute_apices(points: &[[f64; 2]], segments: &[[u32; 2]]) -> Vec<bool> {
+    let mut far: Vec<Vec<u32>> = vec![Vec::new(); points.len()];
+    for s in segments {
+        far[s[0] as usize].push(s[1]);
+        far[s[1] as usize].push(s[0]);
+    }
+    (0..points.len())
+        .map(|z| {
+            let list = &far[z];
+            (0..list.len()).any(|i| {
+                list[i + 1..].iter().any(|&j| {
+                    let (a, b) = (&points[list[i] as usize], &points[j as usize]);
+                    dot_sign(a, b, &points[z]) == Sign::Positive
+                })
+            })
+        })
+        .collect()
+}
+
+/// Where to split the sub-segment `[a b]`: at the power of two nearest to half its length
+/// from its end when exactly one end is an apex (an input point where two segments form an
+/// acute angle), else at its midpoint.
+fn split_point(a: [f64; 2], b: [f64; 2], a_apex: bool, b_apex: bool) -> [f64; 2] {
+    let midpoint = [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
+    let (from, to) = match (a_apex, b_apex) {
+        (true, false) => (a, b),
+        (false, true) => (b, a),
+        _ => return midpoint,
+    };
+    let length = (to[0] - from[0]).hypot(to[1] - from[1]);
+    let t = (length * 0.5).log2().round().exp2() / length;
+    if !(t > 0.25 && t < 0.75) {
+        return midpoint;
+    }
+    [
+        from[0] + t * (to[0] - from[0]),
+        from[1] + t * (to[1] - from[1]),
+    ]
+}
+
+/// Whether `[a b]` is strongly Delaunay-admissible relative to the indexed points of `cloud`
+/// (Pébay's Theorem 2.1).
+fn admissible(cloud: &Cloud, a: u32, b: u32) -> bool {
+    classify_with(cloud, a, b, &cloud.in_small_disk(a, b)).strongly_admissible()
+}
+
+/// The first phase: splits the input segments `segments` (point pairs of `cloud`, which holds
+/// the input points) at concentric shells or midpoints until every sub-segment is strongly
+/// Delaunay-admissible relative to the points of the cloud's grid (Pébay's criterion, with
+/// Ruppert's split points rather than Pébay's projections, which leave short sub-segments
+/// near acute angles that refinement would then propagate); the sub-segments are then edges of
+/// every Delaunay triangulation of those points. Returns the sub-segments with their input
+/// segment and the input segment of each added point.
+pub fn split_segments(
+    cloud: &mut Cloud,
+    segments: &[[u32; 2]],
+    limit: usize,
+) -> Result<(Vec<[u32; 3]>, Vec<u32>)> {
+    let acute = acute_apices(&cloud.points, segments);
+    let apex = |v: u32| acute.get(v as usize).copied().unwrap_or(false);
+    let mut stack: Vec<[u32; 3]> = segments
+        .iter()
+        .enumerate()
+        .rev()
+        .map(|(k, s)| [s[0], s[1], k as u32])
+        .collect();
+    let mut done: Vec<[u32; 3]> = Vec::new();
+    let mut on_segment = Vec::new();
+    loop {
+        let Some([a, b, s]) = stack.pop() else {
+            // Points added later may have entered the disks of earlier sub-segments.
+            let (clean, dirty): (Vec<[u32; 3]>, Vec<[u32; 3]>) = done
+                .into_iter()
+                .partition(|e| admissible(cloud, e[0], e[1]));
+            done = clean;
+            if dirty.is_empty() {
+                break;
+            }
+            stack = dirty.into_iter().rev().collect();
+            continue;
+        };
+        if admissible(cloud, a, b) {
+            done.push([a, b, s]);
+            continue;
+        }
+        if on_segment.len() >= limit {
+            return Err(Error::new(
+                ErrorKind::Limit,
+                format!("segment splitting stopped after adding {limit} points"),
+            ));
+        }
+        let (pa, pb) = (cloud.points[a as usize], cloud.points[b as usize]);
+        let m = split_point(pa, pb, apex(a), apex(b));
+        if m == pa || m == pb {
+            return Err(Error::internal(format!(
+                "sub-segment ({a}, {b}) is too short to split in floating point"
+            )));
+        }
+        let i = cloud.push(m);
+        on_segment.push(s);
+        stack.push([i, b, s]);
+        stack.push([a, i, s]);
+    }
+    Ok((done, on_segment))
 }
