@@ -30,10 +30,9 @@
  * them: both sides' counts below 5, 10 and 15 degrees, before and after optimization, and the
  * optimization times (ours: the run with optimization minus the run without).
  *
- * Usage: test_optimize_vs_cgal [--small | --all]
- * By default: sphere, torus, ellipsoid, two spheres and the three sectors (interfaces and their
- * meeting curve), about 55 s, most of it CGAL's exudation (~12 s on 1.5e5 cells without a time
- * limit). `--all` adds the tanglecube and the nested spheres (about 90 s). `--small` (the
+ * Usage: test_optimize_vs_cgal [--small]
+ * By default the seven shapes of test_mesh_vs_cgal, about 90 s, most of it CGAL's exudation
+ * (~12 s on 1.5e5 cells without a time limit). `--small` (the
  * sanitizer run's flag) keeps the ellipsoid and the two spheres at the same criteria (cells with
  * two boundary faces, a boundary of two components; about 10 s plain, 20 s sanitized): delmesh
  * and the CGAL shim are not instrumented, but the sanitizers' allocator serves them too and this
@@ -411,21 +410,20 @@ static void run_case(const Case *k) {
 }
 
 int main(int argc, char **argv) {
-  int small = argc == 2 && strcmp(argv[1], "--small") == 0, all = argc == 2 && strcmp(argv[1], "--all") == 0;
-  if (argc > 2 || (argc == 2 && !small && !all)) {
-    fprintf(stderr, "usage: %s [--small | --all]\n", argv[0]);
+  int small = argc == 2 && strcmp(argv[1], "--small") == 0;
+  if (argc > 2 || (argc == 2 && !small)) {
+    fprintf(stderr, "usage: %s [--small]\n", argv[0]);
     return 2;
   }
   /* facet angle, facet size, facet distance, cell radius-edge ratio, cell size: test_mesh_vs_cgal's;
-   * then whether --small runs it; the last two only with --all */
+   * then whether --small runs it */
   static const Case cases[] = {
       {SHAPE_SPHERE, {30, 0.05, 0.01, 2, 0.05}, 0},          {SHAPE_TORUS, {30, 0.05, 0.005, 2, 0.05}, 0},
       {SHAPE_ELLIPSOID, {30, 0.05, 0.005, 2, 0.05}, 1},      {SHAPE_TWO_SPHERES, {30, 0.05, 0.01, 2, 0.05}, 1},
       {SHAPE_SECTORS, {30, 0.05, 0.01, 2, 0.05}, 0},         {SHAPE_TANGLECUBE, {30, 0.1, 0.01, 2, 0.1}, 0},
       {SHAPE_NESTED_SPHERES, {30, 0.05, 0.01, 2, 0.05}, 0},
   };
-  size_t count = all ? sizeof cases / sizeof cases[0] : 5;
-  for (size_t i = 0; i < count; i++)
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++)
     if (!small || cases[i].small) run_case(&cases[i]);
   return check_finish();
 }
