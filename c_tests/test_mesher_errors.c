@@ -130,6 +130,9 @@ static void mesher_errors(void) {
   expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_EXUDE, -1), DELMESH_ERROR_INVALID_ARGUMENT, "negative time limit", "time limit");
   expect(delmesh_mesher_set_optimization(m, DELMESH_OPTIMIZE_EXUDE, NAN), DELMESH_ERROR_INVALID_ARGUMENT, "NaN time limit", "time limit");
   expect(delmesh_mesher_set_optimization(NULL, 0, 0), DELMESH_ERROR_NULL_ARGUMENT, "optimization, NULL mesher", "`m`");
+  expect(delmesh_mesher_set_sliver_bound(m, 0), DELMESH_ERROR_INVALID_ARGUMENT, "sliver bound 0", "sliver bound");
+  expect(delmesh_mesher_set_sliver_bound(m, 50), DELMESH_ERROR_INVALID_ARGUMENT, "sliver bound 50", "sliver bound");
+  check_case(delmesh_mesher_set_sliver_bound(m, 20) == DELMESH_OK, "sliver bound 20 accepted");
 
   DelmeshDomain *d = NULL;
   DelmeshMesh *out = SENTINEL_MESH;

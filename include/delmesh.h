@@ -756,6 +756,16 @@ enum DelmeshStatus delmesh_mesher_set_sizing_field(struct DelmeshMesher *m,
                                                    void *user_data);
 
 /*
+ The smallest dihedral angle, in degrees, that sliver perturbation and exudation aim at: the
+ cells below it are treated, worst first (default 15). In (0, 45]. Errors: NULL `m`; a value
+ outside (0, 45] or NaN -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+
+ # Safety
+ `m` is NULL or a live mesher.
+ */
+enum DelmeshStatus delmesh_mesher_set_sliver_bound(struct DelmeshMesher *m, double degrees);
+
+/*
  Lower bound, in degrees, on the smallest dihedral angle of the cells with at least three
  vertices on the surface ("surface slivers"), in [0, 20]; 0 turns it off. Default 15.
  Such cells can have a good radius-edge ratio, and exudation (which keeps the boundary)

@@ -322,6 +322,31 @@ pub unsafe extern "C" fn delmesh_mesher_set_optimization(
     unsafe { with_mesher("delmesh_mesher_set_optimization", m, set) }
 }
 
+/// The smallest dihedral angle, in degrees, that sliver perturbation and exudation aim at: the
+/// cells below it are treated, worst first (default 15). In (0, 45]. Errors: NULL `m`; a value
+/// outside (0, 45] or NaN -> `DELMESH_ERROR_INVALID_ARGUMENT`.
+///
+/// # Safety
+/// `m` is NULL or a live mesher.
+#[no_mangle]
+pub unsafe extern "C" fn delmesh_mesher_set_sliver_bound(
+    m: *mut DelmeshMesher,
+    degrees: f64,
+) -> DelmeshStatus {
+    let set = |m: &mut DelmeshMesher| {
+        if !(degrees > 0.0 && degrees <= 45.0) {
+            return Err(Failure::new(
+                DelmeshStatus::DELMESH_ERROR_INVALID_ARGUMENT,
+                format!("sliver bound {degrees} must lie in (0, 45] degrees"),
+            ));
+        }
+        m.optimization.perturb_options.target_dihedral = degrees;
+        m.optimization.exude_options.target_dihedral = degrees;
+        Ok(())
+    };
+    unsafe { with_mesher("delmesh_mesher_set_sliver_bound", m, set) }
+}
+
 /// Largest number of vertices a run may create; past it the run stops with
 /// `DELMESH_ERROR_LIMIT`. 0 (the default) means no limit. Errors: NULL `m`.
 ///
