@@ -11,7 +11,16 @@
  *   1.0 / 1.2.0) or on the hull;
  * - every input segment the union of its sub-edges (listed in order, through added points);
  * - inserted points, ours beside CGAL's (CGAL's output must be valid too); ours must not exceed
- *   CGAL's over all cases together, and each case's figures are printed. */
+ *   CGAL's over all cases together, and each case's figures are printed.
+ *
+ * Quality mode at 25 and 30 degrees, against CGAL's refine_Delaunay_mesh_2 with
+ * Delaunay_mesh_size_criteria_2 at the same angle bound, on closed domains (a letter A with its
+ * counter as a hole, a thin rhombus, a square with a square hole, the closed cases above):
+ * triangles counter-clockwise, interior edges locally Delaunay, sub-segments strongly
+ * admissible and chained as above; every triangle's smallest angle at least the bound except
+ * at input angles below 60 degrees (its shortest edge joining two segments that meet there;
+ * counted and printed); our triangle count at most CGAL's + 15% (both printed, with the
+ * smallest angles). */
 #include "check.h"
 #include "prng.h"
 #include "ref_cgal2d.h"
@@ -441,6 +450,202 @@ static void error_paths(void) {
   delmesh_mesh_free(mesh);
 }
 
+/* ---------------------------------------------------------------- quality mode */
+
+static void make_letter_a(Case *c) {
+  snprintf(c->name, sizeof c->name, "letter A with its counter as a hole");
+  static const double outer[][2] = {{0.0, 0.0},  {1.4, 0.0},  {1.4, 0.25}, {1.05, 0.3},
+                                    {1.5, 1.5},  {3.5, 1.5},  {3.95, 0.3}, {3.6, 0.25},
+                                    {3.6, 0.0},  {5.0, 0.0},  {5.0, 0.25}, {4.7, 0.35},
+                                    {2.95, 6.0}, {2.05, 6.0}, {0.3, 0.35}, {0.0, 0.25}};
+  for (size_t i = 0; i < 16; ++i) add_point(c, outer[i][0], outer[i][1]);
+  polyline(c, 0, 16, 1);
+  add_point(c, 1.75, 2.1);
+  add_point(c, 3.25, 2.1);
+  add_point(c, 2.5, 4.5);
+  polyline(c, 16, 3, 1);
+}
+
+static void make_rhombus_25(Case *c) {
+  snprintf(c->name, sizeof c->name, "thin rhombus (17 degree angles)");
+  add_point(c, 0, 0);
+  add_point(c, 4, 0.6);
+  add_point(c, 8, 0);
+  add_point(c, 4, -0.6);
+  polyline(c, 0, 4, 1);
+}
+
+static void make_square_with_hole(Case *c) {
+  snprintf(c->name, sizeof c->name, "square with a square hole");
+  add_point(c, 0, 0);
+  add_point(c, 4, 0);
+  add_point(c, 4, 4);
+  add_point(c, 0, 4);
+  polyline(c, 0, 4, 1);
+  add_point(c, 1.5, 1.5);
+  add_point(c, 2.5, 1.5);
+  add_point(c, 2.5, 2.5);
+  add_point(c, 1.5, 2.5);
+  polyline(c, 4, 4, 1);
+}
+
+/* Whether p lies on the segment [a b] up to rounding. */
+static int on_segment(const double p[2], const double a[2], const double b[2]) {
+  double len2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+  double t = ((p[0] - a[0]) * (b[0] - a[0]) + (p[1] - a[1]) * (b[1] - a[1])) / len2;
+  double h = fabs((p[0] - a[0]) * (b[1] - a[1]) - (p[1] - a[1]) * (b[0] - a[0])) / len2;
+  return t >= -1e-12 && t <= 1 + 1e-12 && h < 1e-9;
+}
+
+/* Whether the edge (p, q) joins two points on two input segments that meet at an input point
+ * at an angle below 60 degrees. */
+static int at_small_input_angle(const double p[2], const double q[2], const Case *c) {
+  for (size_t i = 0; i < c->m; ++i)
+    for (size_t j = i + 1; j < c->m; ++j) {
+      const uint32_t *s = &c->seg[2 * i], *r = &c->seg[2 * j];
+      uint32_t z = (s[0] == r[0] || s[0] == r[1]) ? s[0] : (s[1] == r[0] || s[1] == r[1]) ? s[1] : UINT32_MAX;
+      if (z == UINT32_MAX) continue;
+      uint32_t f1 = s[0] == z ? s[1] : s[0], f2 = r[0] == z ? r[1] : r[0];
+      const double *pz = &c->xy[2 * (size_t)z], *p1 = &c->xy[2 * (size_t)f1], *p2 = &c->xy[2 * (size_t)f2];
+      double u[2] = {p1[0] - pz[0], p1[1] - pz[1]}, w[2] = {p2[0] - pz[0], p2[1] - pz[1]};
+      double cosine = (u[0] * w[0] + u[1] * w[1]) / (hypot(u[0], u[1]) * hypot(w[0], w[1]));
+      if (cosine <= 0.5) continue;
+#define ON(x, g) (((x)[0] == pz[0] && (x)[1] == pz[1]) || on_segment((x), pz, (g)))
+      if ((ON(p, p1) && ON(q, p2)) || (ON(p, p2) && ON(q, p1))) return 1;
+#undef ON
+    }
+  return 0;
+}
+
+/* Triangles counter-clockwise, interior edges locally Delaunay; writes the edge table. */
+static int check_quality_triangles(const DelmeshMesh *mesh, EdgeUse **table, size_t *table_count,
+                                   char *why, size_t why_len) {
+  size_t nv = delmesh_mesh_vertex_count(mesh), nt = delmesh_mesh_triangle_count(mesh);
+  const double *xyz = delmesh_mesh_vertices(mesh);
+  const uint32_t *tri = delmesh_mesh_triangles(mesh);
+  double p[3][2], q[2];
+  for (size_t t = 0; t < nt; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      if (tri[3 * t + k] >= nv) return snprintf(why, why_len, "index out of range"), 0;
+      vtx(xyz, tri[3 * t + k], p[k]);
+    }
+    if (ref_orient_2(p[0], p[1], p[2]) != 1)
+      return snprintf(why, why_len, "triangle %zu not counter-clockwise", t), 0;
+  }
+  *table = edge_table(tri, nt, table_count);
+  if (!*table) return snprintf(why, why_len, "an edge is in more than two triangles"), 0;
+  for (size_t e = 0; e < *table_count; ++e) {
+    const EdgeUse *u = &(*table)[e];
+    if (u->count != 2) continue;
+    vtx(xyz, u->a, p[0]);
+    vtx(xyz, u->b, p[1]);
+    vtx(xyz, u->opposite[0], p[2]);
+    if (ref_orient_2(p[0], p[1], p[2]) < 0) {
+      double t[2] = {p[0][0], p[0][1]};
+      memcpy(p[0], p[1], sizeof t);
+      memcpy(p[1], t, sizeof t);
+    }
+    if (ref_incircle_2(p[0], p[1], p[2], vtx(xyz, u->opposite[1], q)) > 0)
+      return snprintf(why, why_len, "edge (%u, %u) is not locally Delaunay", u->a, u->b), 0;
+  }
+  return 1;
+}
+
+static size_t quality_ours[2], quality_cgal[2];
+
+static void run_quality_case(const Case *c, const double *holes, size_t n_holes, double bound, int slot) {
+  DelmeshOptions2d options;
+  memset(&options, 0, sizeof options);
+  options.mode = DELMESH_MODE2D_QUALITY;
+  options.min_angle_degrees = bound;
+  options.holes = holes;
+  options.n_holes = n_holes;
+  DelmeshMesh *mesh = NULL;
+  DelmeshStatus s = delmesh_triangulate_2d(c->xy, c->n, c->seg, c->m, &options, &mesh);
+  if (!check_case(s == DELMESH_OK, "%s at %.0f degrees: quality triangulation (%s)", c->name, bound,
+                  s == DELMESH_OK ? "ok" : delmesh_last_error_message()))
+    return;
+  char why[256] = "";
+  EdgeUse *table = NULL;
+  size_t table_count = 0;
+  int valid = check_quality_triangles(mesh, &table, &table_count, why, sizeof why);
+  check_case(valid, "%s at %.0f degrees: counter-clockwise, locally Delaunay%s%s", c->name, bound,
+             valid ? "" : ": ", why);
+  if (valid) {
+    int ok = check_admissible(mesh, c->n, table, table_count, why, sizeof why);
+    check_case(ok, "%s at %.0f degrees: every sub-edge strongly Delaunay-admissible%s%s", c->name, bound,
+               ok ? "" : ": ", why);
+  }
+  int chained = check_union(mesh, c, why, sizeof why);
+  check_case(chained, "%s at %.0f degrees: every segment the union of its sub-edges%s%s", c->name, bound,
+             chained ? "" : ": ", why);
+  size_t nt = delmesh_mesh_triangle_count(mesh), near = 0, away = 0;
+  const double *xyz = delmesh_mesh_vertices(mesh);
+  const uint32_t *tri = delmesh_mesh_triangles(mesh);
+  double worst = 180.0;
+  for (size_t t = 0; t < nt; ++t) {
+    double p[3][2], l[3];
+    for (int k = 0; k < 3; ++k) vtx(xyz, tri[3 * t + k], p[k]);
+    for (int k = 0; k < 3; ++k) {
+      const double *a = p[(k + 1) % 3], *b = p[(k + 2) % 3];
+      l[k] = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]);
+    }
+    int k = l[0] <= l[1] && l[0] <= l[2] ? 0 : l[1] <= l[2] ? 1 : 2;
+    double x = l[(k + 1) % 3], y = l[(k + 2) % 3];
+    double cosine = (x + y - l[k]) / (2.0 * sqrt(x * y));
+    double angle = acos(cosine > 1 ? 1 : cosine < -1 ? -1 : cosine) * 180.0 / PI;
+    if (angle < worst) worst = angle;
+    if (angle >= bound) continue;
+    if (at_small_input_angle(p[(k + 1) % 3], p[(k + 2) % 3], c))
+      near++;
+    else
+      away++;
+  }
+  check_case(away == 0, "%s at %.0f degrees: every angle at least the bound but at small input angles "
+             "(%zu below it there, %zu elsewhere)", c->name, bound, near, away);
+  RefMesh2d cgal;
+  if (ref_cgal_mesh_2d(c->xy, c->n, c->seg, c->m, holes, n_holes, bound, &cgal, NULL) != 0) {
+    check_case(0, "%s: CGAL mesher: %s", c->name, ref_last_error());
+  } else {
+    check_note("%-40s %2.0f deg: triangles delmesh %5zu  CGAL %5zu   smallest angle %6.2f / %6.2f   "
+               "below the bound %zu / %zu", c->name, bound, nt, cgal.triangle_count, worst,
+               cgal.min_angle_degrees, near + away, cgal.below_bound);
+    check_case((double)nt <= 1.15 * (double)cgal.triangle_count,
+               "%s at %.0f degrees: %zu triangles, at most CGAL's %zu + 15%%", c->name, bound, nt,
+               cgal.triangle_count);
+    quality_ours[slot] += nt;
+    quality_cgal[slot] += cgal.triangle_count;
+  }
+  free(table);
+  delmesh_mesh_free(mesh);
+}
+
+static void quality_cases(void) {
+  static Case c;
+  struct {
+    void (*make)(Case *);
+    double hole[2];
+    size_t n_holes;
+  } cases[] = {{make_letter_a, {2.5, 3.0}, 1},   {make_rhombus_25, {0, 0}, 0},
+               {make_square_with_hole, {2, 2}, 1}, {make_grid, {0, 0}, 0},
+               {make_thin_domain, {0, 0}, 0},      {make_arcs, {0, 0}, 0}};
+  double bounds[] = {25.0, 30.0};
+  for (int b = 0; b < 2; ++b) {
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+      memset(&c, 0, sizeof c);
+      cases[i].make(&c);
+      run_quality_case(&c, cases[i].hole, cases[i].n_holes, bounds[b], b);
+    }
+    for (int k = 20; k <= 80; k *= 2) {
+      memset(&c, 0, sizeof c);
+      make_star_polygon(&c, k, 0x2d2d + (uint64_t)k);
+      run_quality_case(&c, NULL, 0, bounds[b], b);
+    }
+    check_note("quality at %.0f degrees, all cases: triangles delmesh %zu, CGAL %zu", bounds[b],
+               quality_ours[b], quality_cgal[b]);
+  }
+}
+
 int main(int argc, char **argv) {
   (void)argc;
   (void)argv;
@@ -475,5 +680,6 @@ int main(int argc, char **argv) {
   }
   check_note("inserted points over all cases: delmesh %zu, CGAL %zu", total_ours, total_cgal);
   check_case(total_ours <= total_cgal, "delmesh inserts no more points than CGAL over all cases");
+  quality_cases();
   return check_finish();
 }

@@ -7,9 +7,15 @@
 #include "ref_internal.hpp"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesh_vertex_base_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_conformer_2.h>
 
+#include <algorithm>
+#include <cmath>
 #include <exception>
 #include <vector>
 
@@ -69,8 +75,65 @@ extern "C" int ref_cgal_conforming_2d(const double *xy, size_t n, const uint32_t
 }
 
 namespace {
+
 K::Point_2 point2(const double p[2]) { return K::Point_2(p[0], p[1]); }
+
+using MeshVb = CGAL::Delaunay_mesh_vertex_base_2<K>;
+using MeshFb = CGAL::Delaunay_mesh_face_base_2<K>;
+using MeshTds = CGAL::Triangulation_data_structure_2<MeshVb, MeshFb>;
+using MeshCdt = CGAL::Constrained_Delaunay_triangulation_2<K, MeshTds>;
+using Criteria = CGAL::Delaunay_mesh_size_criteria_2<MeshCdt>;
+
+// The smallest angle of a triangle, in degrees (law of cosines at the shortest edge).
+double smallest_angle(const K::Point_2 &a, const K::Point_2 &b, const K::Point_2 &c) {
+  double l[3] = {CGAL::to_double(CGAL::squared_distance(b, c)),
+                 CGAL::to_double(CGAL::squared_distance(c, a)),
+                 CGAL::to_double(CGAL::squared_distance(a, b))};
+  int k = static_cast<int>(std::min_element(l, l + 3) - l);
+  double x = l[(k + 1) % 3], y = l[(k + 2) % 3];
+  double cosine = std::max(-1.0, std::min(1.0, (x + y - l[k]) / (2.0 * std::sqrt(x * y))));
+  return std::acos(cosine) * 180.0 / 3.14159265358979323846;
+}
+
 }  // namespace
+
+extern "C" int ref_cgal_mesh_2d(const double *xy, size_t n, const uint32_t *segments,
+                                size_t n_segments, const double *holes, size_t n_holes,
+                                double min_angle_degrees, RefMesh2d *out, RefTiming *timing) {
+  try {
+    ref::Stopwatch clock;
+    MeshCdt cdt;
+    std::vector<MeshCdt::Vertex_handle> handles;
+    handles.reserve(n);
+    for (size_t i = 0; i < n; ++i) handles.push_back(cdt.insert(point2(&xy[2 * i])));
+    for (size_t k = 0; k < n_segments; ++k) {
+      uint32_t a = segments[2 * k], b = segments[2 * k + 1];
+      if (a >= n || b >= n) return ref::fail("segment index out of range");
+      if (handles[a] != handles[b]) cdt.insert_constraint(handles[a], handles[b]);
+    }
+    std::vector<K::Point_2> seeds;
+    for (size_t h = 0; h < n_holes; ++h) seeds.push_back(point2(&holes[2 * h]));
+    double s = std::sin(min_angle_degrees * 3.14159265358979323846 / 180.0);
+    CGAL::refine_Delaunay_mesh_2(cdt, seeds.begin(), seeds.end(), Criteria(s * s, 0.0), false);
+    if (timing) timing->seconds = clock.seconds();
+    out->vertex_count = cdt.number_of_vertices();
+    out->triangle_count = 0;
+    out->min_angle_degrees = 180.0;
+    out->below_bound = 0;
+    for (auto f : cdt.finite_face_handles()) {
+      if (!f->is_in_domain()) continue;
+      double angle = smallest_angle(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+      out->triangle_count++;
+      out->min_angle_degrees = std::min(out->min_angle_degrees, angle);
+      if (angle < min_angle_degrees) out->below_bound++;
+    }
+    return 0;
+  } catch (const std::exception &e) {
+    return ref::fail(e.what());
+  } catch (...) {
+    return ref::fail("unknown C++ exception");
+  }
+}
 
 extern "C" int ref_small_disk_side(const double a[2], const double b[2], const double q[2]) {
   switch (CGAL::side_of_bounded_circle(point2(a), point2(b), point2(q))) {

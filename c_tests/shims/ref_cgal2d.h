@@ -27,6 +27,22 @@ typedef struct RefConforming2d {
 int ref_cgal_conforming_2d(const double *xy, size_t n, const uint32_t *segments,
                            size_t n_segments, RefConforming2d *out, RefTiming *timing);
 
+/* CGAL::refine_Delaunay_mesh_2 with Delaunay_mesh_size_criteria_2 (shape bound
+ * sin^2(min_angle_degrees), no size bound) on the constrained Delaunay triangulation of the
+ * points and segments, the components holding a hole seed left out (seeds not marked as
+ * inside), as CGAL's mesher meshes the bounded components by default. Writes the number of
+ * vertices, of triangles in the domain, their smallest angle (degrees) and how many have an
+ * angle below the bound. */
+typedef struct RefMesh2d {
+  size_t vertex_count;
+  size_t triangle_count;
+  double min_angle_degrees;
+  size_t below_bound;
+} RefMesh2d;
+int ref_cgal_mesh_2d(const double *xy, size_t n, const uint32_t *segments, size_t n_segments,
+                     const double *holes, size_t n_holes, double min_angle_degrees,
+                     RefMesh2d *out, RefTiming *timing);
+
 /* Exact planar predicates (CGAL, Epick):
  * - ref_small_disk_side(a, b, q): +1 when q is strictly inside the disk of diameter [a b],
  *   0 on its circle, -1 outside (CGAL::side_of_bounded_circle);
