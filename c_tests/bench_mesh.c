@@ -12,6 +12,7 @@
  * is its peak resident size. Reported: medians, cells per second, ratios CGAL / delmesh
  * (> 1: delmesh is faster, smaller). */
 #include "bench_util.h"
+#include "mesh_run.h"
 #include "ref_mesh3.h"
 #include "shapes.h"
 
@@ -43,22 +44,10 @@ static const struct {
 static double level_size(size_t c, int level) { return cases[c].h0 / (double)(1 << level); }
 
 static int run_delmesh(const Shape *s, double h, double *seconds, size_t *cells) {
-  DelmeshDomain *d = NULL;
-  DelmeshMesher *m = NULL;
+  RefMeshCriteria criteria = {30, h, h / 5, 2, h};
   DelmeshMesh *mesh = NULL;
   double t0 = bench_seconds_now();
-  DelmeshStatus st = s->implicit ? delmesh_domain_new_implicit(s->implicit, NULL, s->bbox, 1e-6, &d)
-                                 : delmesh_domain_new_labeled(s->label, NULL, s->bbox, 1e-6, &d);
-  if (st == DELMESH_OK) st = delmesh_mesher_new(&m);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_facet_angle(m, 30);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_facet_size(m, h);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_facet_distance(m, h / 5);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_cell_radius_edge_ratio(m, 2);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_cell_size(m, h);
-  /* As CGAL's side: no exudation, no surface sliver bound (not a CGAL criterion). */
-  if (st == DELMESH_OK) st = delmesh_mesher_set_optimization(m, 0, 0);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_surface_sliver_angle(m, 0);
-  if (st == DELMESH_OK) st = delmesh_mesher_run(m, d, &mesh);
+  DelmeshStatus st = mesh_run(s, &criteria, 1e-6, MESH_RUN_AS_CGAL, &mesh);
   *seconds = bench_seconds_now() - t0;
   if (st != DELMESH_OK) {
     fprintf(stderr, "bench_mesh: delmesh failed (status %d): %s\n", (int)st, delmesh_last_error_message());

@@ -26,6 +26,7 @@
 #define _POSIX_C_SOURCE 200809L
 
 #include "bench_util.h"
+#include "mesh_run.h"
 #include "quality.h"
 #include "ref_mesh3.h"
 #include "shapes.h"
@@ -66,20 +67,10 @@ typedef struct Figures {
 } Figures;
 
 static int run_delmesh(const Shape *s, double h, int optimize, double *seconds, Figures *f) {
-  DelmeshDomain *d = NULL;
-  DelmeshMesher *m = NULL;
+  RefMeshCriteria criteria = {30, h, h / 5, 2, h};
   DelmeshMesh *mesh = NULL;
   double t0 = bench_seconds_now();
-  DelmeshStatus st = s->implicit ? delmesh_domain_new_implicit(s->implicit, NULL, s->bbox, 1e-6, &d)
-                                 : delmesh_domain_new_labeled(s->label, NULL, s->bbox, 1e-6, &d);
-  if (st == DELMESH_OK) st = delmesh_mesher_new(&m);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_facet_angle(m, 30);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_facet_size(m, h);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_facet_distance(m, h / 5);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_cell_radius_edge_ratio(m, 2);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_cell_size(m, h);
-  if (st == DELMESH_OK && !optimize) st = delmesh_mesher_set_optimization(m, 0, 0);
-  if (st == DELMESH_OK) st = delmesh_mesher_run(m, d, &mesh);
+  DelmeshStatus st = mesh_run(s, &criteria, 1e-6, optimize ? MESH_RUN_DEFAULT : MESH_RUN_REFINE, &mesh);
   *seconds = bench_seconds_now() - t0;
   if (st != DELMESH_OK) {
     fprintf(stderr, "bench_optimize: delmesh failed (status %d): %s\n", (int)st, delmesh_last_error_message());

@@ -26,6 +26,7 @@
 
 #include "boundary.h"
 #include "check.h"
+#include "mesh_run.h"
 #include "quality.h"
 #include "metrics.h"
 #include "ref_mesh3.h"
@@ -148,25 +149,10 @@ static int run_cgal(const Shape *s, const RefMeshCriteria *c, RefMesh *mesh, Res
 /* Our side, through the C API. Returns the status; *mesh is set on success. */
 static DelmeshStatus run_delmesh(const Shape *s, const RefMeshCriteria *c, DelmeshMesh **mesh, Result *r) {
   double start = now();
-  DelmeshDomain *domain = NULL;
-  DelmeshMesher *mesher = NULL;
-  DelmeshStatus st = s->implicit ? delmesh_domain_new_implicit(s->implicit, NULL, s->bbox, RELATIVE_ERROR, &domain)
-                                 : delmesh_domain_new_labeled(s->label, NULL, s->bbox, RELATIVE_ERROR, &domain);
-  if (st == DELMESH_OK) st = delmesh_mesher_new(&mesher);
-  if (st == DELMESH_OK && c->facet_angle > 0) st = delmesh_mesher_set_facet_angle(mesher, c->facet_angle);
-  if (st == DELMESH_OK && c->facet_size > 0) st = delmesh_mesher_set_facet_size(mesher, c->facet_size);
-  if (st == DELMESH_OK && c->facet_distance > 0) st = delmesh_mesher_set_facet_distance(mesher, c->facet_distance);
-  if (st == DELMESH_OK && c->cell_radius_edge_ratio > 0)
-    st = delmesh_mesher_set_cell_radius_edge_ratio(mesher, c->cell_radius_edge_ratio);
-  if (st == DELMESH_OK && c->cell_size > 0) st = delmesh_mesher_set_cell_size(mesher, c->cell_size);
   /* Refinement alone with CGAL's criteria only, as CGAL's side runs with no_perturb() and
-   * no_exude(): no exudation, no surface sliver bound. */
-  if (st == DELMESH_OK) st = delmesh_mesher_set_optimization(mesher, 0, 0);
-  if (st == DELMESH_OK) st = delmesh_mesher_set_surface_sliver_angle(mesher, 0);
-  if (st == DELMESH_OK) st = delmesh_mesher_run(mesher, domain, mesh);
+   * no_exude(): no optimization, no surface sliver bound. */
+  DelmeshStatus st = mesh_run(s, c, RELATIVE_ERROR, MESH_RUN_AS_CGAL, mesh);
   double seconds = now() - start;
-  delmesh_mesher_free(mesher);
-  delmesh_domain_free(domain);
   if (st != DELMESH_OK) return st;
   *r = (Result){.seconds = seconds, .n = delmesh_mesh_vertex_count(*mesh),
                 .tet_count = delmesh_mesh_tetrahedron_count(*mesh), .xyz = delmesh_mesh_vertices(*mesh),

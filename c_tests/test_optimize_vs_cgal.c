@@ -41,6 +41,7 @@
 
 #include "boundary.h"
 #include "check.h"
+#include "mesh_run.h"
 #include "metrics.h"
 #include "quality.h"
 #include "ref_mesh3.h"
@@ -183,22 +184,8 @@ enum { OPTIMIZE_NONE, OPTIMIZE_DEFAULT };
 static DelmeshStatus run_delmesh(const Shape *s, const RefMeshCriteria *c, int optimize, DelmeshMesh **mesh,
                                  double *seconds) {
   double start = now();
-  DelmeshDomain *domain = NULL;
-  DelmeshMesher *mesher = NULL;
-  DelmeshStatus st = s->implicit ? delmesh_domain_new_implicit(s->implicit, NULL, s->bbox, RELATIVE_ERROR, &domain)
-                                 : delmesh_domain_new_labeled(s->label, NULL, s->bbox, RELATIVE_ERROR, &domain);
-  if (st == DELMESH_OK) st = delmesh_mesher_new(&mesher);
-  if (st == DELMESH_OK && c->facet_angle > 0) st = delmesh_mesher_set_facet_angle(mesher, c->facet_angle);
-  if (st == DELMESH_OK && c->facet_size > 0) st = delmesh_mesher_set_facet_size(mesher, c->facet_size);
-  if (st == DELMESH_OK && c->facet_distance > 0) st = delmesh_mesher_set_facet_distance(mesher, c->facet_distance);
-  if (st == DELMESH_OK && c->cell_radius_edge_ratio > 0)
-    st = delmesh_mesher_set_cell_radius_edge_ratio(mesher, c->cell_radius_edge_ratio);
-  if (st == DELMESH_OK && c->cell_size > 0) st = delmesh_mesher_set_cell_size(mesher, c->cell_size);
-  if (st == DELMESH_OK && optimize == OPTIMIZE_NONE) st = delmesh_mesher_set_optimization(mesher, 0, 0);
-  if (st == DELMESH_OK) st = delmesh_mesher_run(mesher, domain, mesh);
+  DelmeshStatus st = mesh_run(s, c, RELATIVE_ERROR, optimize == OPTIMIZE_NONE ? MESH_RUN_REFINE : MESH_RUN_DEFAULT, mesh);
   *seconds = now() - start;
-  delmesh_mesher_free(mesher);
-  delmesh_domain_free(domain);
   return st;
 }
 

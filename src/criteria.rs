@@ -31,6 +31,7 @@
 //! guaranteed to terminate (thesis Th. 3.4; CGAL's documentation gives the same limits).
 
 use crate::error::{Error, ErrorKind, Result};
+use crate::geometry::{cross, dist2, dot, sub};
 use crate::predicates::Point;
 
 /// A sizing field: `(point, dimension, index) -> size`; a result that is not a positive
@@ -283,27 +284,6 @@ fn positive(what: &str, v: f64) -> Result<f64> {
 pub fn patch_index(labels: (i32, i32)) -> i32 {
     let (lo, hi) = (labels.0.min(labels.1), labels.0.max(labels.1));
     lo.wrapping_shl(16) | (hi & 0xffff)
-}
-
-fn sub(a: &Point, b: &Point) -> Point {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(u: &Point, v: &Point) -> Point {
-    [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ]
-}
-
-fn dot(u: &Point, v: &Point) -> f64 {
-    u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
-}
-
-fn dist2(a: &Point, b: &Point) -> f64 {
-    let d = sub(a, b);
-    dot(&d, &d)
 }
 
 /// sin² of the smallest angle of a triangle: the angle opposite the shortest edge, whose

@@ -17,6 +17,7 @@ pub mod criteria;
 pub mod domain;
 pub mod error;
 pub mod ffi;
+pub mod geometry;
 pub mod io;
 pub mod mesh;
 pub mod mesh2d;

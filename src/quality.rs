@@ -6,6 +6,7 @@
 //! one). Per boundary facet: its smallest angle. Computed in floating point: these are
 //! measurements, not decisions.
 
+use crate::geometry::{cross, dot, norm, sub};
 use crate::mesh::Mesh;
 
 type P = [f64; 3];
@@ -160,24 +161,4 @@ fn circumradius(p: &[P; 4]) -> f64 {
         (dot(&u, &u) * vw[k] + dot(&v, &v) * wu[k] + dot(&w, &w) * uv[k]) / det2
     });
     norm(&c)
-}
-
-fn sub(a: &P, b: &P) -> P {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-fn cross(u: &P, v: &P) -> P {
-    [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ]
-}
-
-fn dot(u: &P, v: &P) -> f64 {
-    u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
-}
-
-fn norm(u: &P) -> f64 {
-    dot(u, u).sqrt()
 }

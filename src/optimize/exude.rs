@@ -23,11 +23,11 @@
 use std::time::{Duration, Instant};
 
 use super::local::{
-    commit_labels, cone_labels, cone_quality, cross, dot, nearest_neighbour2, star_quality, sub,
-    SliverQueue,
+    commit_labels, cone_labels, cone_quality, nearest_neighbour2, star_quality, SliverQueue,
 };
 use crate::criteria::Criteria;
 use crate::error::Result;
+use crate::geometry::{cross, dot, sub};
 use crate::predicates::Point;
 use crate::refine::Labeled;
 use crate::triangulation::tets::INFINITE;

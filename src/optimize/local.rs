@@ -8,7 +8,7 @@
 //! labels on the same sides, before and after ([`keeps_interfaces`]).
 
 use crate::criteria::{circumcenter, Criteria};
-use crate::predicates::Point;
+use crate::geometry::{dot, sub};
 use crate::quality::min_dihedral as dihedral;
 use crate::refine::Labeled;
 use crate::triangulation::tets::{FACE, INFINITE};
@@ -174,20 +174,4 @@ pub fn commit_labels(m: &mut Labeled, labels: &[i32], dimension: i8) {
         m.label[t as usize] = l;
     }
     m.dimension.push(dimension);
-}
-
-pub fn sub(a: &Point, b: &Point) -> Point {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-pub fn cross(u: &Point, v: &Point) -> Point {
-    [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ]
-}
-
-pub fn dot(u: &Point, v: &Point) -> f64 {
-    u[0] * v[0] + u[1] * v[1] + u[2] * v[2]
 }

@@ -16,10 +16,11 @@
 use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
-use super::local::{dot, nearest_neighbour2, sub, SliverQueue};
+use super::local::{nearest_neighbour2, SliverQueue};
 use super::relocate::{movable_star, relocate, Gain, Outcome};
 use crate::criteria::Criteria;
 use crate::error::Result;
+use crate::geometry::{dot, sub};
 use crate::predicates::Point;
 use crate::quality;
 use crate::refine::Labeled;
