@@ -180,7 +180,7 @@ int main(int argc, char **argv) {
   printf("%-10s %6s | %-17s | %-26s | %-29s | %9s | %-15s | %-11s\n", "", "", "refined cells", "delmesh, s (median)",
          "CGAL, s (median)", "time", "min dihedral", "cells < 10°");
   printf("%-10s %6s | %8s %8s | %8s %8s %8s | %9s %9s %9s | %9s | %7s %7s | %5s %5s\n", "shape", "h", "delmesh", "CGAL",
-         "none", "default", "exude", "perturb", "exude", "total", "CGAL/ours", "delmesh", "CGAL", "ours", "CGAL");
+         "none", "default", "passes", "perturb", "exude", "total", "CGAL/ours", "delmesh", "CGAL", "ours", "CGAL");
   int failures = 0;
   for (size_t c = 0; c < CASES; c++)
     for (int level = 0; level < levels; level++) {
