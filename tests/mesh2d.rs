@@ -1028,3 +1028,30 @@ fn quality_options_are_checked() {
     })
     .is_err());
 }
+
+#[test]
+fn quality_cocircular_grid_with_inner_segments() {
+    let xy = grid(8, 8);
+    let id = |x: u32, y: u32| y * 8 + x;
+    let mut segments = Vec::new();
+    for i in 0..7 {
+        segments.push([id(i, 0), id(i + 1, 0)]);
+        segments.push([id(i, 7), id(i + 1, 7)]);
+        segments.push([id(0, i), id(0, i + 1)]);
+        segments.push([id(7, i), id(7, i + 1)]);
+    }
+    segments.extend([
+        [id(1, 1), id(6, 3)],
+        [id(1, 6), id(6, 5)],
+        [id(2, 2), id(3, 5)],
+    ]);
+    for bound in [25.0, 30.0] {
+        let name = format!("cocircular grid at {bound}");
+        refine_checked(&QualityCase {
+            name: &name,
+            xy: xy.clone(),
+            segments: segments.clone(),
+            options: angle_only(bound),
+        });
+    }
+}

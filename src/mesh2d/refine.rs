@@ -20,23 +20,26 @@
 //!    that lie in the domain are inserted (the others are left out: they constrain nothing).
 //! 3. [`Refiner::run`], in the level order of Rineau's thesis §5.4 (sub-segments first, then
 //!    triangles):
-//!    - a sub-segment is split when a vertex of a triangle on a side of it in the domain lies
-//!      in its closed small disk (the disk of diameter the sub-segment: Ruppert's
-//!      encroachment), or when it is not strictly locally Delaunay (its two apices cocircular
-//!      with its ends, or one inside the other's circle: then it would not be in every
-//!      Delaunay triangulation). It is split at a power-of-two distance from its end when
-//!      that end is an input point where two segments form an acute angle (concentric
-//!      shells, so that sub-segments around a small angle end on common circles), else at its
-//!      midpoint;
+//!    - a sub-segment is split when a vertex of a triangle on a side of it in the domain
+//!      *encroaches* it: lies in its diametral lens, seeing it under at least
+//!      `180° - 2 × bound` (Shewchuk's lens, smaller than Ruppert's diametral disk: fewer
+//!      splits; the closed diametral disk without an angle bound), or when it is not strictly
+//!      locally Delaunay (its two apices cocircular with its ends, or one inside the other's
+//!      circle: then it would not be in every Delaunay triangulation). It is split at a
+//!      power-of-two distance from its end when that end is an input point where two segments
+//!      form an acute angle (concentric shells, so that sub-segments around a small angle end
+//!      on common circles), else at its midpoint;
 //!    - a triangle of the domain is *bad* when its smallest angle is below the bound or its
 //!      area above the bound of its region; it is split at its off-center (the point on the
 //!      bisector of its shortest edge from which that edge is seen under slightly more than
 //!      the bound) when the angle is bad and that is nearer than the circumcenter, else at its
-//!      circumcenter. A point that would encroach sub-segments is not inserted: they are split
-//!      instead, and the triangle is reconsidered;
-//!    - a triangle bad by angle only whose shortest edge joins two points on segments sharing
-//!      an end, at equal distances from it (within [`SHELL_TOLERANCE`]), is skinny because of
-//!      a small input angle: splitting it would not terminate. It is dropped and counted
+//!      circumcenter. A point that would encroach sub-segments, or that lies beyond one in
+//!      its diametral disk, is not inserted: they are split instead, and the triangle is
+//!      reconsidered;
+//!    - a triangle bad by angle only whose shortest edge joins two points on segments meeting
+//!      at an end at an angle below 60 degrees, at equal distances from it (within
+//!      [`SHELL_TOLERANCE`]), is skinny because of a small input angle: splitting it would not
+//!      terminate. It is dropped and counted
 //!      ([`RefinementReport::rejected_forever`]).
 //!
 //! Invariants. Between two steps, every sub-segment is an edge of the triangulation and every
@@ -506,13 +509,27 @@ impl Refiner {
         Walk::Lost
     }
 
-    /// Whether point `q` is in the closed small disk of the sub-segment `(a, b)`.
+    /// Whether point `q` encroaches the sub-segment `(a, b)`: it lies in its closed
+    /// diametral lens, the points that see it under at least `180° - 2 × min_angle`
+    /// (Shewchuk's lens; the closed small disk when there is no angle bound). Decided in
+    /// floating point past the exact small-disk test: it steers refinement, the conformity of
+    /// the result is decided exactly by [`Self::apex_encroached`].
     fn encroaches(&self, a: u32, b: u32, q: &[f64; 2]) -> bool {
-        dot_sign(self.p(a), self.p(b), q) != Sign::Positive
+        if dot_sign(self.p(a), self.p(b), q) == Sign::Positive {
+            return false;
+        }
+        if self.min_angle <= 0.0 {
+            return true;
+        }
+        let (pa, pb) = (self.p(a), self.p(b));
+        let (u, v) = ([pa[0] - q[0], pa[1] - q[1]], [pb[0] - q[0], pb[1] - q[1]]);
+        let dot = u[0] * v[0] + u[1] * v[1];
+        let lens = (2.0 * self.min_angle).to_radians().cos();
+        dot * dot >= lens * lens * (u[0] * u[0] + u[1] * u[1]) * (v[0] * v[0] + v[1] * v[1])
     }
 
     /// Whether the sub-segment opposite slot `k` of `t` must be split: an apex on a side in
-    /// the domain lies in its closed small disk (Ruppert's encroachment), or it is not strictly
+    /// the domain encroaches it (Ruppert's rule with Shewchuk's lens), or it is not strictly
     /// locally Delaunay (its two apices cocircular with it, or one inside the other's circle),
     /// which would let it out of some Delaunay triangulation of the vertices.
     fn apex_encroached(&self, t: u32, k: usize) -> bool {
@@ -559,6 +576,13 @@ impl Refiner {
     /// included) without crossing a sub-segment. Returns the cavity and its boundary edges
     /// (triangle, slot), or `None` when `p` does not see every boundary edge from inside.
     fn cavity(&mut self, start: &[u32], p: &[f64; 2]) -> Option<Cavity> {
+        let (cavity, boundary, visible) = self.conflicts(start, p);
+        visible.then_some((cavity, boundary))
+    }
+
+    /// [`Self::cavity`] whether or not `p` sees every boundary edge from inside (the last
+    /// value says whether it does).
+    fn conflicts(&mut self, start: &[u32], p: &[f64; 2]) -> (Vec<u32>, Vec<(u32, usize)>, bool) {
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 {
             self.mark.iter_mut().for_each(|m| *m = 0);
@@ -583,6 +607,7 @@ impl Refiner {
             }
         }
         let mut boundary = Vec::new();
+        let mut visible = true;
         for &t in &cavity {
             for k in 0..3 {
                 let n = self.adj[t as usize][k];
@@ -595,12 +620,12 @@ impl Refiner {
                     && b != INFINITE
                     && orient2d(self.p(a), self.p(b), p) != Sign::Positive
                 {
-                    return None;
+                    visible = false;
                 }
                 boundary.push((t, k));
             }
         }
-        Some((cavity, boundary))
+        (cavity, boundary, visible)
     }
 
     fn new_triangle(&mut self, v: [u32; 3], region: u32) -> u32 {
@@ -811,8 +836,9 @@ impl Refiner {
         }
     }
 
-    /// Whether `p` and `q` lie on two segments sharing an end, at equal distances from it
-    /// (the shortest edge of a triangle skinny because of a small input angle).
+    /// Whether `p` and `q` lie on two segments that meet at an end at an angle below 60
+    /// degrees, at equal distances from it (the shortest edge of a triangle skinny because of
+    /// a small input angle).
     fn on_common_shell(&self, p: u32, q: u32) -> bool {
         let (sp, sq) = (self.segments_at(p), self.segments_at(q));
         for &s in &sp {
@@ -831,7 +857,15 @@ impl Refiner {
                         (x[0] - pz[0]).hypot(x[1] - pz[1])
                     };
                     let (dp, dq) = (d(p), d(q));
-                    if (dp - dq).abs() <= SHELL_TOLERANCE * dp.max(dq) {
+                    if (dp - dq).abs() > SHELL_TOLERANCE * dp.max(dq) {
+                        continue;
+                    }
+                    // The segments meet at z at an angle below 60 degrees.
+                    let far = |g: [u32; 2]| if g[0] == z { g[1] } else { g[0] };
+                    let (u, w) = (*self.p(far(s)), *self.p(far(r)));
+                    let (u, w) = ([u[0] - pz[0], u[1] - pz[1]], [w[0] - pz[0], w[1] - pz[1]]);
+                    let dot = u[0] * w[0] + u[1] * w[1];
+                    if dot > 0.5 * u[0].hypot(u[1]) * w[0].hypot(w[1]) {
                         return true;
                     }
                 }
@@ -898,7 +932,10 @@ impl Refiner {
             Walk::Blocked(u, k) => {
                 let v = self.tri[u as usize];
                 let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-                if self.encroaches(a, b, &x) && self.split_segment(a, b)? {
+                // A point beyond a sub-segment in its small disk: split the sub-segment.
+                if dot_sign(self.p(a), self.p(b), &x) != Sign::Positive
+                    && self.split_segment(a, b)?
+                {
                     self.report.encroaching_points += 1;
                     self.push_if_bad(t);
                 } else {
@@ -915,10 +952,7 @@ impl Refiner {
             self.report.dropped += 1;
             return Ok(());
         }
-        let Some((cavity, boundary)) = self.cavity(&[u], &x) else {
-            self.report.dropped += 1;
-            return Ok(());
-        };
+        let (cavity, boundary, visible) = self.conflicts(&[u], &x);
         let hit: Vec<(u32, u32)> = boundary
             .iter()
             .filter(|&&(c, k)| self.is_segment(c, k))
@@ -939,6 +973,10 @@ impl Refiner {
             } else {
                 self.report.dropped += 1;
             }
+            return Ok(());
+        }
+        if !visible {
+            self.report.dropped += 1;
             return Ok(());
         }
         self.budget()?;
