@@ -1027,6 +1027,10 @@ fn quality_options_are_checked() {
         ..angle_only(20.0)
     })
     .is_err());
+    let one_segment = quality_2d(&[0.0, 0.0, 1.0, 0.0, 0.5, 1.0], &[0, 1], &angle_only(20.0));
+    let e = one_segment.unwrap_err();
+    assert_eq!(e.kind, ErrorKind::InvalidInput);
+    assert!(e.message.contains("enclose no region"), "{}", e.message);
 }
 
 #[test]

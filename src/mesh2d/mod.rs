@@ -185,7 +185,14 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
     let (subs, added_on) = refine::split_segments(&mut cloud, &segs, limit)?;
     let all = cloud.points;
     let n_all = all.len();
-    let dt = Delaunay2d::of_subset(&all, |i| i as usize >= n_input || on_any[i as usize])?;
+    let dt = Delaunay2d::of_subset(&all, |i| i as usize >= n_input || on_any[i as usize]).map_err(
+        |e| {
+            Error::invalid_input(format!(
+                "the segments enclose no region (their points: {})",
+                e.message
+            ))
+        },
+    )?;
     let compact = dt.compact();
     let mut duplicate_of = first.clone();
     duplicate_of.extend((n_input as u32)..(n_all as u32));
