@@ -19,6 +19,13 @@ if ! command -v cargo >/dev/null; then
     exit 1
 fi
 
+# Shewchuk's Triangle from PyPI (package `triangle`, test-only): the 2D reference of
+# tests/python/test_vs_triangle.py.
+if ! python3 -c "import triangle" 2>/dev/null; then
+    echo "setup: installing the Python package triangle"
+    python3 -m pip install --quiet triangle
+fi
+
 missing=()
 for package in "${packages[@]}"; do
     installed "$package" || missing+=("$package")

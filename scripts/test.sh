@@ -38,6 +38,7 @@ stage "cargo build" cargo build --release
 stage "cargo test" cargo test --release
 stage "header check" bash scripts/check-header.sh
 stage "C tests" c_tests test
+stage "Python tests" python3 tests/python/test_vs_triangle.py
 stage "sanitized C tests" c_tests sanitize
 
 if [ "$failed" -gt 0 ]; then
