@@ -867,6 +867,35 @@ enum DelmeshStatus delmesh_triangulate_2d(const double *xy,
                                           struct DelmeshMesh **out);
 
 /*
+ Triangulates the planar straight-line graph of the file `path` as `delmesh_triangulate_2d`
+ does with its points and segments: Triangle `.node` (points only) or `.poly` (points,
+ segments, holes, regional attributes; with no point in the `.poly`, the points of the
+ `.node` file of the same name), or CGAL `.edg` (one segment `x1 y1 x2 y2` a line after the
+ count; equal coordinates are one point, in order of first appearance; a segment from a
+ point to itself adds the point only). The extension (ASCII case ignored) names the format.
+
+ Triangle files are numbered from 0 or 1 as their first point's index says; vertex `i` of
+ the output is the file's point `i` counted from 0. Attributes and boundary markers are
+ read and ignored. In QUALITY mode the file's holes are added to `options->holes`, and its
+ regions to `options->regions` (the regional attribute, which must be an integer, is the
+ label; a negative or absent maximum area means the global bound); other modes ignore them.
+
+ Errors: those of `delmesh_triangulate_2d`; NULL `path` -> DELMESH_ERROR_NULL_ARGUMENT; an
+ unknown extension -> DELMESH_ERROR_INVALID_ARGUMENT; a file that cannot be read ->
+ DELMESH_ERROR_IO; a syntax error -> DELMESH_ERROR_INVALID_INPUT, the message naming the
+ file and the line.
+
+ Thread-safe.
+
+ # Safety
+ `path` is NULL or a NUL-terminated string; `options` is NULL or points to a readable
+ `DelmeshOptions2d`; `out` is NULL or writable.
+ */
+enum DelmeshStatus delmesh_triangulate_2d_file(const char *path,
+                                               const struct DelmeshOptions2d *options,
+                                               struct DelmeshMesh **out);
+
+/*
  The library version, "MAJOR.MINOR.PATCH" (NUL-terminated).
 
  Static storage owned by delmesh: never NULL, never freed, valid for the life of the

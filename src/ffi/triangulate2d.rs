@@ -1,7 +1,10 @@
 //! Planar triangulation (API.md "2D").
 
+use std::ffi::c_char;
+
 use super::mesh::DelmeshMesh;
 use super::{args, call, DelmeshStatus, Failure};
+use crate::mesh::Mesh;
 use crate::mesh2d;
 use crate::mesh2d::refine::{QualityOptions, RegionSeed};
 
@@ -108,16 +111,83 @@ pub unsafe extern "C" fn delmesh_triangulate_2d(
         };
         let mode = unsafe { mode_of(options) }?;
         let out = unsafe { args::out_param(out, "out") }?;
-        let mesh = match mode {
-            DelmeshMode2d::DELMESH_MODE2D_DELAUNAY => mesh2d::delaunay_2d(xy)?,
-            DelmeshMode2d::DELMESH_MODE2D_CONFORMING => mesh2d::conforming_2d(xy, segments)?.mesh,
-            DelmeshMode2d::DELMESH_MODE2D_QUALITY => {
-                let quality = unsafe { quality_options(options) }?;
-                mesh2d::quality_2d(xy, segments, &quality)?.mesh
-            }
-        };
+        let mesh = unsafe { triangulate(xy, segments, mode, options, &[], &[]) }?;
         *out = DelmeshMesh::into_raw(mesh);
         Ok(())
+    })
+}
+
+/// Triangulates the planar straight-line graph of the file `path` as `delmesh_triangulate_2d`
+/// does with its points and segments: Triangle `.node` (points only) or `.poly` (points,
+/// segments, holes, regional attributes; with no point in the `.poly`, the points of the
+/// `.node` file of the same name), or CGAL `.edg` (one segment `x1 y1 x2 y2` a line after the
+/// count; equal coordinates are one point, in order of first appearance; a segment from a
+/// point to itself adds the point only). The extension (ASCII case ignored) names the format.
+///
+/// Triangle files are numbered from 0 or 1 as their first point's index says; vertex `i` of
+/// the output is the file's point `i` counted from 0. Attributes and boundary markers are
+/// read and ignored. In QUALITY mode the file's holes are added to `options->holes`, and its
+/// regions to `options->regions` (the regional attribute, which must be an integer, is the
+/// label; a negative or absent maximum area means the global bound); other modes ignore them.
+///
+/// Errors: those of `delmesh_triangulate_2d`; NULL `path` -> DELMESH_ERROR_NULL_ARGUMENT; an
+/// unknown extension -> DELMESH_ERROR_INVALID_ARGUMENT; a file that cannot be read ->
+/// DELMESH_ERROR_IO; a syntax error -> DELMESH_ERROR_INVALID_INPUT, the message naming the
+/// file and the line.
+///
+/// Thread-safe.
+///
+/// # Safety
+/// `path` is NULL or a NUL-terminated string; `options` is NULL or points to a readable
+/// `DelmeshOptions2d`; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn delmesh_triangulate_2d_file(
+    path: *const c_char,
+    options: *const DelmeshOptions2d,
+    out: *mut *mut DelmeshMesh,
+) -> DelmeshStatus {
+    call("delmesh_triangulate_2d_file", || {
+        let path = unsafe { args::path(path, "path") }?;
+        let mode = unsafe { mode_of(options) }?;
+        let out = unsafe { args::out_param(out, "out") }?;
+        let pslg = mesh2d::read::read_pslg(&path)?;
+        let mesh = unsafe {
+            triangulate(
+                &pslg.xy,
+                &pslg.segments,
+                mode,
+                options,
+                &pslg.holes,
+                &pslg.regions,
+            )
+        }?;
+        *out = DelmeshMesh::into_raw(mesh);
+        Ok(())
+    })
+}
+
+/// The triangulation of `xy`, `segments` in `mode`; in QUALITY mode `holes` and `regions` are
+/// added to those of `options`.
+///
+/// # Safety
+/// As `quality_options` when `mode` is QUALITY (then `options` is not NULL).
+unsafe fn triangulate(
+    xy: &[f64],
+    segments: &[u32],
+    mode: DelmeshMode2d,
+    options: *const DelmeshOptions2d,
+    holes: &[[f64; 2]],
+    regions: &[RegionSeed],
+) -> Result<Mesh, Failure> {
+    Ok(match mode {
+        DelmeshMode2d::DELMESH_MODE2D_DELAUNAY => mesh2d::delaunay_2d(xy)?,
+        DelmeshMode2d::DELMESH_MODE2D_CONFORMING => mesh2d::conforming_2d(xy, segments)?.mesh,
+        DelmeshMode2d::DELMESH_MODE2D_QUALITY => {
+            let mut quality = unsafe { quality_options(options) }?;
+            quality.holes.extend_from_slice(holes);
+            quality.regions.extend_from_slice(regions);
+            mesh2d::quality_2d(xy, segments, &quality)?.mesh
+        }
     })
 }
 

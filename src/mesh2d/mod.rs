@@ -15,7 +15,8 @@
 //!   broken by a symbolic perturbation so that the output is a function of the point set;
 //! - [`refine`]: quality triangulation of the domain (Ruppert's Delaunay refinement with
 //!   Shewchuk's concentric shells and Üngör's off-centers) on top of the conforming one, every
-//!   sub-segment kept strongly Delaunay-admissible ([`quality_2d`]).
+//!   sub-segment kept strongly Delaunay-admissible ([`quality_2d`]);
+//! - [`read`]: Triangle `.node` / `.poly` and CGAL `.edg` readers.
 //!
 //! Invariants of a result (checked by [`validate_mesh`]): every triangle counter-clockwise
 //! (exact `orient2d > 0`) with vertex indices in range; input points first, in input order,
@@ -28,6 +29,7 @@ pub mod cloud;
 pub mod delaunay;
 pub mod exact;
 pub mod input;
+pub mod read;
 pub mod refine;
 pub mod subdivide;
 
