@@ -11,12 +11,17 @@
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesh_vertex_base_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_conformer_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
 #include <exception>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -151,4 +156,39 @@ extern "C" int ref_incircle_2(const double a[2], const double b[2], const double
 
 extern "C" int ref_orient_2(const double a[2], const double b[2], const double c[2]) {
   return static_cast<int>(CGAL::orientation(point2(a), point2(b), point2(c)));
+}
+
+namespace {
+
+using InfoVb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, K>;
+using InfoTds = CGAL::Triangulation_data_structure_2<InfoVb>;
+using Delaunay2 = CGAL::Delaunay_triangulation_2<K, InfoTds>;
+
+}  // namespace
+
+extern "C" int ref_cgal_delaunay_2d(const double *xy, size_t n, uint32_t **triangles,
+                                    size_t *triangle_count, RefTiming *timing) {
+  if (!xy || !triangles || !triangle_count) return ref::fail("ref_cgal_delaunay_2d: NULL argument");
+  if (!ref::fits_u32(n)) return ref::fail("ref_cgal_delaunay_2d: too many points");
+  try {
+    ref::Stopwatch clock;
+    std::vector<std::pair<K::Point_2, std::uint32_t>> input;
+    input.reserve(n);
+    for (size_t i = 0; i < n; ++i) input.emplace_back(point2(&xy[2 * i]), std::uint32_t(i));
+    Delaunay2 dt(input.begin(), input.end());
+    size_t count = dt.number_of_faces();
+    uint32_t *out = static_cast<uint32_t *>(std::malloc(3 * (count ? count : 1) * sizeof(uint32_t)));
+    if (!out) return ref::fail("out of memory");
+    size_t k = 0;
+    for (auto f : dt.finite_face_handles())
+      for (int i = 0; i < 3; ++i) out[k++] = f->vertex(i)->info();
+    if (timing) timing->seconds = clock.seconds();
+    *triangles = out;
+    *triangle_count = k / 3;
+    return 0;  // dt is destroyed after the clock stopped
+  } catch (const std::exception &e) {
+    return ref::fail(e.what());
+  } catch (...) {
+    return ref::fail("ref_cgal_delaunay_2d: unknown exception");
+  }
 }

@@ -43,6 +43,13 @@ int ref_cgal_mesh_2d(const double *xy, size_t n, const uint32_t *segments, size_
                      const double *holes, size_t n_holes, double min_angle_degrees,
                      RefMesh2d *out, RefTiming *timing);
 
+/* CGAL::Delaunay_triangulation_2<Epick> of the n points xy, built from (point, index) pairs at
+ * once (CGAL sorts them spatially), its finite faces exported as counter-clockwise index
+ * triples into *triangles (malloc'd, 3 * *triangle_count). The timing covers construction and
+ * export, not destruction. */
+int ref_cgal_delaunay_2d(const double *xy, size_t n, uint32_t **triangles,
+                         size_t *triangle_count, RefTiming *timing);
+
 /* Exact planar predicates (CGAL, Epick):
  * - ref_small_disk_side(a, b, q): +1 when q is strictly inside the disk of diameter [a b],
  *   0 on its circle, -1 outside (CGAL::side_of_bounded_circle);
