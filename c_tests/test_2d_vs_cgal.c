@@ -258,13 +258,34 @@ static const EdgeUse *find_edge(const EdgeUse *table, size_t count, uint32_t a, 
 }
 
 /* Validity and the Delaunay property; writes the edge table for the later checks. */
+/* Every edge shared by two triangles of `table` is locally Delaunay (exact, CGAL). */
+static int locally_delaunay(const double *xyz, const EdgeUse *table, size_t count, char *why, size_t why_len) {
+  double p[3][2], q[2];
+  for (size_t e = 0; e < count; ++e) {
+    const EdgeUse *u = &table[e];
+    if (u->count != 2) continue;
+    /* Counter-clockwise (a, b, opposite[0]) or (b, a, opposite[0]). */
+    vtx(xyz, u->a, p[0]);
+    vtx(xyz, u->b, p[1]);
+    vtx(xyz, u->opposite[0], p[2]);
+    if (ref_orient_2(p[0], p[1], p[2]) < 0) {
+      double t[2] = {p[0][0], p[0][1]};
+      memcpy(p[0], p[1], sizeof t);
+      memcpy(p[1], t, sizeof t);
+    }
+    if (ref_incircle_2(p[0], p[1], p[2], vtx(xyz, u->opposite[1], q)) > 0)
+      return snprintf(why, why_len, "edge (%u, %u) is not locally Delaunay", u->a, u->b), 0;
+  }
+  return 1;
+}
+
 static int check_triangulation(const DelmeshMesh *mesh, size_t n_input, EdgeUse **table,
                                size_t *table_count, char *why, size_t why_len) {
   size_t nv = delmesh_mesh_vertex_count(mesh), nt = delmesh_mesh_triangle_count(mesh);
   const double *xyz = delmesh_mesh_vertices(mesh);
   const uint32_t *tri = delmesh_mesh_triangles(mesh);
   const uint32_t *dup = delmesh_mesh_duplicate_of(mesh);
-  double p[3][2], q[2];
+  double p[3][2];
   char *used = calloc(nv + 1, 1);
   if (!used) return snprintf(why, why_len, "out of memory"), 0;
   for (size_t t = 0; t < nt; ++t) {
@@ -285,22 +306,7 @@ static int check_triangulation(const DelmeshMesh *mesh, size_t n_input, EdgeUse 
   free(used);
   *table = edge_table(tri, nt, table_count);
   if (!*table) return snprintf(why, why_len, "an edge is in more than two triangles"), 0;
-  for (size_t e = 0; e < *table_count; ++e) {
-    const EdgeUse *u = &(*table)[e];
-    if (u->count != 2) continue;
-    /* Counter-clockwise (a, b, opposite[0]) or (b, a, opposite[0]). */
-    vtx(xyz, u->a, p[0]);
-    vtx(xyz, u->b, p[1]);
-    vtx(xyz, u->opposite[0], p[2]);
-    if (ref_orient_2(p[0], p[1], p[2]) < 0) {
-      double t[2] = {p[0][0], p[0][1]};
-      memcpy(p[0], p[1], sizeof t);
-      memcpy(p[1], t, sizeof t);
-    }
-    if (ref_incircle_2(p[0], p[1], p[2], vtx(xyz, u->opposite[1], q)) > 0)
-      return snprintf(why, why_len, "edge (%u, %u) is not locally Delaunay", u->a, u->b), 0;
-  }
-  return 1;
+  return locally_delaunay(xyz, *table, *table_count, why, why_len);
 }
 
 /* Strong admissibility of every sub-edge (see the file comment). */
@@ -523,7 +529,7 @@ static int check_quality_triangles(const DelmeshMesh *mesh, EdgeUse **table, siz
   size_t nv = delmesh_mesh_vertex_count(mesh), nt = delmesh_mesh_triangle_count(mesh);
   const double *xyz = delmesh_mesh_vertices(mesh);
   const uint32_t *tri = delmesh_mesh_triangles(mesh);
-  double p[3][2], q[2];
+  double p[3][2];
   for (size_t t = 0; t < nt; ++t) {
     for (int k = 0; k < 3; ++k) {
       if (tri[3 * t + k] >= nv) return snprintf(why, why_len, "index out of range"), 0;
@@ -534,21 +540,7 @@ static int check_quality_triangles(const DelmeshMesh *mesh, EdgeUse **table, siz
   }
   *table = edge_table(tri, nt, table_count);
   if (!*table) return snprintf(why, why_len, "an edge is in more than two triangles"), 0;
-  for (size_t e = 0; e < *table_count; ++e) {
-    const EdgeUse *u = &(*table)[e];
-    if (u->count != 2) continue;
-    vtx(xyz, u->a, p[0]);
-    vtx(xyz, u->b, p[1]);
-    vtx(xyz, u->opposite[0], p[2]);
-    if (ref_orient_2(p[0], p[1], p[2]) < 0) {
-      double t[2] = {p[0][0], p[0][1]};
-      memcpy(p[0], p[1], sizeof t);
-      memcpy(p[1], t, sizeof t);
-    }
-    if (ref_incircle_2(p[0], p[1], p[2], vtx(xyz, u->opposite[1], q)) > 0)
-      return snprintf(why, why_len, "edge (%u, %u) is not locally Delaunay", u->a, u->b), 0;
-  }
-  return 1;
+  return locally_delaunay(xyz, *table, *table_count, why, why_len);
 }
 
 static size_t quality_ours[2], quality_cgal[2];

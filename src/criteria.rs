@@ -25,13 +25,15 @@
 //! subdomain label.
 //!
 //! Invariants (held by the setters): angle in `(0, 30]`; ratio finite and `>= 2`; constant
-//! sizes and distances finite and positive; surface sliver angle in `[0, 20]` (0: off; above
-//! 20 the refinement of surface slivers was not seen to terminate reliably, and no proof covers
-//! any bound). Beyond 30° or below 2, Delaunay refinement is not
-//! guaranteed to terminate (thesis Th. 3.4; CGAL's documentation gives the same limits).
+//! sizes and distances finite and positive; surface sliver angle in `[0, 20]` (0: off). The
+//! thesis proves termination for larger ratio bounds only (Th. 3.5.5: `ratio >= 4 / (1 - 5g)`,
+//! `g >= 0.03`); 30 degrees and 2 are the usual practical limits of Delaunay refinement, beyond
+//! which it may not terminate. No proof covers the surface sliver bound; 20 degrees is the
+//! largest value accepted, and the default 15 is the largest value measured (it terminated on
+//! every shape of the C tests).
 
 use crate::error::{Error, ErrorKind, Result};
-use crate::geometry::{cross, dist2, dot, sub};
+use crate::geometry::{cross, dist2, dot, sub, triangle_circumcenter};
 use crate::predicates::Point;
 
 /// A sizing field: `(point, dimension, index) -> size`; a result that is not a positive
@@ -120,8 +122,8 @@ impl Criteria {
     pub fn set_surface_sliver_angle(&mut self, degrees: f64) -> Result<()> {
         if !(0.0..=20.0).contains(&degrees) {
             return Err(Error::invalid_argument(format!(
-                "surface sliver angle {degrees} must lie in [0, 20] degrees (0: off): above 20 \
-                 their refinement is not known to terminate"
+                "surface sliver angle {degrees} must lie in [0, 20] degrees (0: off): larger \
+                 bounds are not known to terminate"
             )));
         }
         self.surface_sliver_angle = (degrees > 0.0).then_some(degrees);
@@ -294,23 +296,4 @@ pub fn min_angle_sin2(t: [&Point; 3]) -> f64 {
     let shortest = (0..3).fold(0, |m, k| if e[k] < e[m] { k } else { m });
     let others = e[(shortest + 1) % 3] * e[(shortest + 2) % 3];
     dot(&w, &w) / others
-}
-
-/// The center of the circle through the triangle's vertices.
-pub fn triangle_circumcenter(t: [&Point; 3]) -> Point {
-    let (u, v) = (sub(t[1], t[0]), sub(t[2], t[0]));
-    let w = cross(&u, &v);
-    let (a, b) = (cross(&v, &w), cross(&w, &u));
-    let (nu, nv, nw) = (dot(&u, &u), dot(&v, &v), 2.0 * dot(&w, &w));
-    std::array::from_fn(|k| t[0][k] + (nu * a[k] + nv * b[k]) / nw)
-}
-
-/// The center of the sphere through the tetrahedron's vertices (not finite when they are
-/// coplanar in floating point).
-pub fn circumcenter(t: [&Point; 4]) -> Point {
-    let (u, v, w) = (sub(t[1], t[0]), sub(t[2], t[0]), sub(t[3], t[0]));
-    let (nu, nv, nw) = (dot(&u, &u), dot(&v, &v), dot(&w, &w));
-    let (vw, wu, uv) = (cross(&v, &w), cross(&w, &u), cross(&u, &v));
-    let det2 = 2.0 * dot(&u, &vw);
-    std::array::from_fn(|k| t[0][k] + (nu * vw[k] + nv * wu[k] + nw * uv[k]) / det2)
 }

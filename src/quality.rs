@@ -6,7 +6,7 @@
 //! one). Per boundary facet: its smallest angle. Computed in floating point: these are
 //! measurements, not decisions.
 
-use crate::geometry::{cross, dot, norm, sub};
+use crate::geometry::{circumcenter, cross, dot, norm, sub, tet_volume};
 use crate::mesh::Mesh;
 
 type P = [f64; 3];
@@ -117,14 +117,10 @@ pub fn tetrahedron(p: [P; 4]) -> TetQuality {
     let n = outward_normals(&p);
     let (lo, hi) = normal_cosines(&n);
     let (min_dihedral, max_dihedral) = ((-lo).acos().to_degrees(), (-hi).acos().to_degrees());
-    let volume = dot(
-        &sub(&p[1], &p[0]),
-        &cross(&sub(&p[2], &p[0]), &sub(&p[3], &p[0])),
-    )
-    .abs()
-        / 6.0;
+    let corners = [&p[0], &p[1], &p[2], &p[3]];
+    let volume = tet_volume(corners).abs();
     let area: f64 = n.iter().map(|v| 0.5 * norm(v)).sum();
-    let circumradius = circumradius(&p);
+    let circumradius = norm(&sub(&circumcenter(corners), &p[0]));
     let shortest = (0..4)
         .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
         .map(|(i, j)| norm(&sub(&p[i], &p[j])))
@@ -151,14 +147,4 @@ pub fn triangle_min_angle(p: [P; 3]) -> f64 {
             norm(&cross(&u, &v)).atan2(dot(&u, &v)).to_degrees()
         })
         .fold(180.0, f64::min)
-}
-
-fn circumradius(p: &[P; 4]) -> f64 {
-    let (u, v, w) = (sub(&p[1], &p[0]), sub(&p[2], &p[0]), sub(&p[3], &p[0]));
-    let (vw, wu, uv) = (cross(&v, &w), cross(&w, &u), cross(&u, &v));
-    let det2 = 2.0 * dot(&u, &vw);
-    let c: P = std::array::from_fn(|k| {
-        (dot(&u, &u) * vw[k] + dot(&v, &v) * wu[k] + dot(&w, &w) * uv[k]) / det2
-    });
-    norm(&c)
 }

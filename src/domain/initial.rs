@@ -9,8 +9,9 @@
 //! least [`MIN_PER_COMPONENT`] when it has that many, so that a small component still has
 //! restricted facets. The user's seed points are added as they are.
 
-use super::{crossing, dist2, Domain};
+use super::{crossing, Domain};
 use crate::error::{Error, Result};
+use crate::geometry::dist2;
 use crate::predicates::Point;
 
 /// Grid cells per axis.

@@ -21,6 +21,7 @@ pub use functions::{FunctionDomain, Oracle};
 pub use initial::initial_points;
 
 use crate::error::Result;
+use crate::geometry::{dist, dist2, midpoint};
 use crate::predicates::Point;
 
 /// An axis-aligned box `lo..=hi`.
@@ -200,16 +201,4 @@ pub fn first_crossing(
         return crossing(domain, &prev, la, b, lb).map(Some);
     }
     Ok(None)
-}
-
-pub fn midpoint(a: &Point, b: &Point) -> Point {
-    std::array::from_fn(|k| 0.5 * a[k] + 0.5 * b[k])
-}
-
-pub fn dist2(a: &Point, b: &Point) -> f64 {
-    (0..3).map(|k| (a[k] - b[k]) * (a[k] - b[k])).sum()
-}
-
-pub fn dist(a: &Point, b: &Point) -> f64 {
-    dist2(a, b).sqrt()
 }

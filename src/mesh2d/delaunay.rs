@@ -301,23 +301,7 @@ impl<'a> Delaunay2d<'a> {
 
     /// Whether point `i` is in conflict with triangle `t` (see the module documentation).
     fn in_conflict(&self, t: u32, i: u32) -> bool {
-        let v = self.tri[t as usize];
-        let p = self.point(i);
-        match v.iter().position(|&x| x == INFINITE) {
-            None => {
-                let [a, b, c] = v.map(|x| self.point(x));
-                incircle_sos(a, b, c, p) == Sign::Positive
-            }
-            Some(k) => {
-                let a = self.point(v[(k + 1) % 3]);
-                let b = self.point(v[(k + 2) % 3]);
-                match orient2d(a, b, p) {
-                    Sign::Positive => true,
-                    Sign::Zero => dot_sign(a, b, p) == Sign::Negative,
-                    Sign::Negative => false,
-                }
-            }
-        }
+        conflict(self.tri[t as usize], |v| self.point(v), self.point(i))
     }
 
     /// The triangles in conflict with point `i`, a connected set grown from `start`.
@@ -519,4 +503,26 @@ fn hilbert_key(mut x: u32, mut y: u32, bits: u32) -> u64 {
         s >>= 1;
     }
     d
+}
+
+/// Whether `p` is in conflict with the counter-clockwise triangle `v` (one vertex may be
+/// [`INFINITE`]), `at` giving the coordinates of its vertices: strictly inside its circle with
+/// ties broken by the symbolic perturbation; for an infinite triangle, strictly beyond its
+/// hull edge or on the edge's open segment.
+pub(super) fn conflict<'a>(v: [u32; 3], at: impl Fn(u32) -> &'a [f64; 2], p: &[f64; 2]) -> bool {
+    match v.iter().position(|&x| x == INFINITE) {
+        None => {
+            let [a, b, c] = v.map(&at);
+            incircle_sos(a, b, c, p) == Sign::Positive
+        }
+        Some(k) => {
+            let a = at(v[(k + 1) % 3]);
+            let b = at(v[(k + 2) % 3]);
+            match orient2d(a, b, p) {
+                Sign::Positive => true,
+                Sign::Zero => dot_sign(a, b, p) == Sign::Negative,
+                Sign::Negative => false,
+            }
+        }
+    }
 }

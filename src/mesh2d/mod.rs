@@ -362,23 +362,12 @@ fn ordered_sub_edges(
     points: &[[f64; 2]],
     duplicate_of: &[u32],
 ) -> Vec<u32> {
-    let mut keyed: Vec<(u32, f64, u32, u32)> = sub
-        .sub_edges()
-        .map(|(a, b, s)| {
-            let [p, q] = segs[s as usize].map(|i| points[i as usize]);
-            let along = |i: u32| {
-                let x = points[i as usize];
-                (x[0] - p[0]) * (q[0] - p[0]) + (x[1] - p[1]) * (q[1] - p[1])
-            };
-            let (a, b) = if along(a) <= along(b) { (a, b) } else { (b, a) };
-            (origin[s as usize], along(a), a, b)
-        })
-        .collect();
-    keyed.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
-    keyed
-        .into_iter()
-        .flat_map(|(_, _, a, b)| [duplicate_of[a as usize], duplicate_of[b as usize]])
-        .collect()
+    let subs: Vec<(u32, u32, u32)> = sub.sub_edges().collect();
+    let mut edges = ordered_segments(&subs, segs, origin, points);
+    for v in &mut edges {
+        *v = duplicate_of[*v as usize];
+    }
+    edges
 }
 
 /// The mesh of a 2D triangulation: z = 0, label 1.

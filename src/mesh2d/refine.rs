@@ -55,8 +55,8 @@ use std::collections::{BinaryHeap, HashMap, VecDeque};
 
 use super::classify::classify_with;
 use super::cloud::Cloud;
-use super::delaunay::INFINITE;
-use super::exact::{dot_sign, incircle_sos};
+use super::delaunay::{conflict, INFINITE};
+use super::exact::dot_sign;
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::{incircle, orient2d, Sign};
 
@@ -554,22 +554,7 @@ impl Refiner {
 
     /// Whether triangle `t`'s conflict with `p` holds (see [`super::delaunay`]).
     fn in_conflict(&self, t: u32, p: &[f64; 2]) -> bool {
-        let v = self.tri[t as usize];
-        match v.iter().position(|&x| x == INFINITE) {
-            None => {
-                let [a, b, c] = v.map(|x| self.p(x));
-                incircle_sos(a, b, c, p) == Sign::Positive
-            }
-            Some(k) => {
-                let a = self.p(v[(k + 1) % 3]);
-                let b = self.p(v[(k + 2) % 3]);
-                match orient2d(a, b, p) {
-                    Sign::Positive => true,
-                    Sign::Zero => dot_sign(a, b, p) == Sign::Negative,
-                    Sign::Negative => false,
-                }
-            }
-        }
+        conflict(self.tri[t as usize], |v| self.p(v), p)
     }
 
     /// The cavity of `p`: the triangles in conflict with it reachable from `start` (all

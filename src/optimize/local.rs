@@ -7,7 +7,8 @@
 //! only if the facets between different labels inside the cavity are the same, with the same
 //! labels on the same sides, before and after ([`keeps_interfaces`]).
 
-use crate::criteria::{circumcenter, Criteria};
+use crate::criteria::Criteria;
+use crate::geometry::circumcenter;
 use crate::geometry::{dot, sub};
 use crate::quality::min_dihedral as dihedral;
 use crate::refine::Labeled;

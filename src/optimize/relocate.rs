@@ -6,8 +6,9 @@
 //! vertex whose star touches another subdomain does not either: the passes keep the boundary.
 
 use super::local::{commit_labels, cone_labels, keeps_interfaces, min_dihedral, star_quality};
-use crate::criteria::{circumcenter, Criteria};
+use crate::criteria::Criteria;
 use crate::error::{Error, Result};
+use crate::geometry::circumcenter;
 use crate::predicates::Point;
 use crate::quality;
 use crate::refine::Labeled;

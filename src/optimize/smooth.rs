@@ -11,8 +11,9 @@
 use std::time::{Duration, Instant};
 
 use super::relocate::{movable_star, relocate, Gain, Outcome};
-use crate::criteria::{circumcenter, Criteria};
+use crate::criteria::Criteria;
 use crate::error::Result;
+use crate::geometry::{circumcenter, tet_volume};
 use crate::predicates::Point;
 use crate::refine::Labeled;
 
@@ -104,7 +105,7 @@ fn odt_position(m: &Labeled, star: &[u32]) -> Point {
     let mut total = 0.0;
     for &s in star {
         let p = m.tri.tets().vertices(s).map(|x| m.tri.vertex(x));
-        let volume = volume(p);
+        let volume = tet_volume(p);
         let c = circumcenter(p);
         for k in 0..3 {
             sum[k] += volume * c[k];
@@ -112,12 +113,4 @@ fn odt_position(m: &Labeled, star: &[u32]) -> Point {
         total += volume;
     }
     sum.map(|x| x / total)
-}
-
-fn volume(p: [&Point; 4]) -> f64 {
-    let d = |a: &Point, b: &Point| [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
-    let (u, v, w) = (d(p[1], p[0]), d(p[2], p[0]), d(p[3], p[0]));
-    (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0])
-        + u[2] * (v[0] * w[1] - v[1] * w[0]))
-        / 6.0
 }

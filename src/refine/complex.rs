@@ -17,9 +17,10 @@
 //! facet are what [`Complex::compute_cell`] and [`Complex::restricted`] give for the current
 //! triangulation; both sides of a facet name the same ball; no ball is named by a dead slot.
 
-use crate::criteria::{circumcenter, Criteria};
-use crate::domain::{dist2, first_crossing, midpoint, Domain};
+use crate::criteria::Criteria;
+use crate::domain::{first_crossing, Domain};
 use crate::error::Result;
+use crate::geometry::{add, circumcenter, cross, dist2, midpoint, sub};
 use crate::predicates::Point;
 use crate::triangulation::tets::{FACE, INFINITE};
 use crate::triangulation::{Conflicts, Triangulation};
@@ -337,18 +338,8 @@ impl<'a> Complex<'a> {
     }
 }
 
-fn add(a: &Point, b: &Point) -> Point {
-    std::array::from_fn(|k| a[k] + b[k])
-}
-
 /// The normal of a facet listed counter-clockwise from inside its tetrahedron, pointing out
 /// of it: `(c - a) x (b - a)`.
 fn outward_normal(p: [&Point; 3]) -> Point {
-    let u: Point = std::array::from_fn(|k| p[2][k] - p[0][k]);
-    let v: Point = std::array::from_fn(|k| p[1][k] - p[0][k]);
-    [
-        u[1] * v[2] - u[2] * v[1],
-        u[2] * v[0] - u[0] * v[2],
-        u[0] * v[1] - u[1] * v[0],
-    ]
+    cross(&sub(p[2], p[0]), &sub(p[1], p[0]))
 }

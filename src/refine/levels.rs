@@ -17,8 +17,8 @@
 use super::complex::{Complex, SURFACE, VOLUME};
 use super::queue::{Element, Queue};
 use crate::criteria::{Badness, Criteria, TOPOLOGY};
-use crate::domain::dist2;
 use crate::error::Result;
+use crate::geometry::dist2;
 use crate::predicates::Point;
 
 /// What a level says of a point proposed by a lower level.
