@@ -363,10 +363,6 @@ fn a_small_component_is_reached_through_seed_points() {
     let small = [1.5, 1.45, 1.45];
     let f = move |p: &P| (norm2(p) - 1.0).min(norm2(&sub(p, &small)) - 0.0016);
     let mut d = FunctionDomain::new(Oracle::Implicit(Box::new(f)), bbox(2.0), 1e-6).unwrap();
-    let mut cr = Criteria::new();
-    cr.set_facet_angle(30.0).unwrap();
-    cr.set_facet_size(0.01).unwrap();
-    cr.set_facet_distance(0.002).unwrap();
     let without = refine(&d, &criteria(0.3), Limits::default()).unwrap();
     assert_eq!(euler_per_component(&without, (1, 0)), vec![2]);
     let seeds: Vec<P> = [
