@@ -275,6 +275,27 @@ typedef int32_t (*DelmeshProgressFn)(const struct DelmeshProgress *p, void *user
 typedef double (*DelmeshSizingFn)(const double *p, int32_t dimension, int32_t index, void *user_data);
 
 /*
+ Options of `delmesh_tetrahedralize_surface` (all In). Zero-initialized = defaults.
+ */
+typedef struct DelmeshSurfaceOptions {
+    /*
+     0 = no quality refinement; else tetrahedra whose circumradius-to-shortest-edge ratio is
+     above it are refined with interior points (TetGen `-q`), never splitting an input
+     triangle. At least 1.2 when not 0.
+     */
+    double max_radius_edge_ratio;
+    /*
+     0 = none; else an upper bound on every tetrahedron's volume (TetGen `-a`).
+     */
+    double max_volume;
+    /*
+     1 = keep the tetrahedra between the surface and its convex hull too (they get their
+     own label); 0 = drop them.
+     */
+    int32_t keep_convex_hull;
+} DelmeshSurfaceOptions;
+
+/*
  Options of `delmesh_triangulate_2d` (all In). Zero-initialize, then set `mode`.
  */
 typedef struct DelmeshOptions2d {
@@ -807,6 +828,87 @@ enum DelmeshStatus delmesh_regular_tetrahedralize(const double *xyz,
                                                   const double *weights,
                                                   size_t n,
                                                   struct DelmeshMesh **out);
+
+/*
+ Tetrahedralizes the regions enclosed by the `n_triangles` triangles `triangles` (3 vertex
+ indices each, into the `n_vertices` vertices `xyz`, 3 doubles each), keeping every input
+ triangle as a facet of the output.
+
+ The triangles may bound several regions: an edge shared by more than two triangles (an
+ interface, two solids touching along an edge) is fine. Orientation of the input triangles
+ does not matter. Regions are found by flood fill from outside; the region left after the
+ outside is removed, region after region, gets labels 1, 2, ... in the order of their
+ smallest input triangle index.
+
+ Output: vertex `i < n_vertices` is input vertex `i` (bit for bit); Steiner points follow,
+ all strictly inside a region (none on the surface). Tetrahedra are positively oriented.
+ Facet `k` is input triangle `k` with the same vertex order; its labels (from, to) say which
+ region lies on each side (the right-hand normal points from `from` to `to`, 0 = outside).
+ Vertex dimension 2 for surface vertices, 3 for Steiner points, -1 for input vertices no
+ triangle uses (they are not meshed). Deterministic.
+
+ Errors: NULL `xyz`, `triangles` or `out` -> DELMESH_ERROR_NULL_ARGUMENT; a negative or
+ non-finite option, a ratio in (0, 1.2) -> DELMESH_ERROR_INVALID_ARGUMENT; a non-finite
+ coordinate, an index out of range, a degenerate (zero-area) or repeated triangle, an edge
+ with a single triangle, two input vertices at one position, or two triangles that
+ intersect other than along their shared vertices and edge -> DELMESH_ERROR_INVALID_INPUT,
+ the message naming the indices; recovery or refinement that cannot finish within its
+ bounds -> DELMESH_ERROR_LIMIT.
+
+ # Safety
+ `xyz` is NULL or points to 3 * n_vertices readable doubles, `triangles` to 3 * n_triangles
+ `uint32_t`; `options` is NULL or readable; `out` is NULL or writable.
+ */
+enum DelmeshStatus delmesh_tetrahedralize_surface(const double *xyz,
+                                                  size_t n_vertices,
+                                                  const uint32_t *triangles,
+                                                  size_t n_triangles,
+                                                  const struct DelmeshSurfaceOptions *options,
+                                                  struct DelmeshMesh **out);
+
+/*
+ Tetrahedralizes the surface of the file `path` as `delmesh_tetrahedralize_surface_regions`
+ does. Formats, by extension (ASCII case ignored): `.off`, `.stl` (ASCII or binary; equal
+ coordinates are one vertex), `.obj` (faces of any size, fanned), `.ply` (ASCII or binary),
+ TetGen `.poly` and `.smesh` (polygonal facets with holes are triangulated first; the
+ file's region and hole seeds are used).
+
+ Errors: those of `delmesh_tetrahedralize_surface`; NULL `path` ->
+ DELMESH_ERROR_NULL_ARGUMENT; an unknown extension -> DELMESH_ERROR_INVALID_ARGUMENT; an
+ unreadable file -> DELMESH_ERROR_IO; a syntax error -> DELMESH_ERROR_INVALID_INPUT naming
+ the file and the line.
+
+ # Safety
+ `path` is NULL or a NUL-terminated string; `options` is NULL or readable; `out` is NULL or
+ writable.
+ */
+enum DelmeshStatus delmesh_tetrahedralize_surface_file(const char *path,
+                                                       const struct DelmeshSurfaceOptions *options,
+                                                       struct DelmeshMesh **out);
+
+/*
+ `delmesh_tetrahedralize_surface` with region and hole seeds (TetGen `.poly` semantics):
+ `regions` holds `n_regions` records (x, y, z, label, max_volume): the region containing
+ the point gets `label` (an integer other than 0) and, when `max_volume > 0`, that bound on
+ its tetrahedra's volumes; `holes` holds `n_holes` points (x, y, z): the region containing
+ each is removed. Regions with no seed are labeled as `delmesh_tetrahedralize_surface` says,
+ after the largest seed label. A seed on the surface or outside every region is
+ DELMESH_ERROR_INVALID_ARGUMENT.
+
+ # Safety
+ As `delmesh_tetrahedralize_surface`; `regions` and `holes` are NULL (with a count of 0) or
+ point to 5 * n_regions and 3 * n_holes readable doubles.
+ */
+enum DelmeshStatus delmesh_tetrahedralize_surface_regions(const double *xyz,
+                                                          size_t n_vertices,
+                                                          const uint32_t *triangles,
+                                                          size_t n_triangles,
+                                                          const double *regions,
+                                                          size_t n_regions,
+                                                          const double *holes,
+                                                          size_t n_holes,
+                                                          const struct DelmeshSurfaceOptions *options,
+                                                          struct DelmeshMesh **out);
 
 /*
  Triangulates the `n_points` points `xy` (x y interleaved, 2 * n_points doubles) and the

@@ -8,6 +8,7 @@
 //! - [`domain`]: the geometry as an oracle (implicit and labeling functions);
 //! - [`criteria`]: facet and cell bounds, constant or sizing fields;
 //! - [`refine`]: oracle-driven Delaunay refinement (restricted Delaunay, refinement levels);
+//! - [`recovery`]: tetrahedralization of a triangulated surface, every triangle kept;
 //! - [`mesh2d`]: planar Delaunay and conforming (Pébay) triangulations;
 //! - [`optimize`]: sliver removal after refinement (exudation);
 //! - [`mesh`]: the result type handed to users, and its [`quality`] report;
@@ -24,6 +25,7 @@ pub mod mesh2d;
 pub mod optimize;
 pub mod predicates;
 pub mod quality;
+pub mod recovery;
 pub mod refine;
 pub mod triangulation;
 

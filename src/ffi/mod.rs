@@ -25,6 +25,7 @@ pub mod mesh;
 pub mod mesher;
 pub mod quality;
 pub mod status;
+pub mod surface;
 pub mod triangulate;
 pub mod triangulate2d;
 pub mod version;

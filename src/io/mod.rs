@@ -11,6 +11,7 @@
 
 pub mod gmsh;
 pub mod medit;
+pub mod surface;
 pub mod vtu;
 
 use std::fmt;
