@@ -14,10 +14,20 @@
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
 //! vertices in input order followed by the Steiner points, all strictly inside a region.
 
+mod classify;
+pub mod edges;
+pub mod faces;
+pub mod flips;
+pub mod tetmesh;
 pub mod validate;
 
-use crate::error::{Error, Result};
+use std::collections::HashSet;
+
+use crate::error::{Error, ErrorKind, Result};
 use crate::mesh::Mesh;
+use crate::predicates::Point;
+use flips::Protected;
+use tetmesh::{key, TetMesh};
 
 /// A region seed (TetGen `.poly` semantics): the region containing `point` gets `label`
 /// and, when `max_volume > 0`, that bound on its tetrahedra's volumes.
@@ -70,6 +80,114 @@ pub fn tetrahedralize_surface(
         ));
     }
     validate::check_surface(points, tris)?;
-    let _ = options;
-    Err(Error::internal("surface recovery is not implemented yet"))
+    check_options(options)?;
+    let (mut mesh, used) = enclosed_delaunay(points, tris)?;
+    let _ = used;
+    let protected = protected(tris);
+    let edges: Vec<[u32; 2]> = protected.edges.iter().copied().collect::<Vec<_>>();
+    let edges = sorted(edges);
+    let stuck = until_stable(edges, |&[a, b]| edges::recover_edge(&mut mesh, &protected, a, b))?;
+    if let Some(&[a, b]) = stuck.first() {
+        let k = tris.iter().position(|f| f.contains(&a) && f.contains(&b)).unwrap_or(0);
+        return Err(Error::new(
+            ErrorKind::Limit,
+            format!(
+                "edge ({a}, {b}) of triangle {k} (and {} more) could not be recovered by flips; \
+                 Steiner points are not supported yet",
+                stuck.len() - 1
+            ),
+        ));
+    }
+    let stuck = until_stable(tris.to_vec(), |&f| faces::recover_face(&mut mesh, &protected, f))?;
+    if let Some(f) = stuck.first() {
+        let k = tris.iter().position(|g| g == f).unwrap_or(0);
+        return Err(Error::new(
+            ErrorKind::Limit,
+            format!(
+                "triangle {k} {f:?} (and {} more) could not be recovered by flips; Steiner \
+                 points are not supported yet",
+                stuck.len() - 1
+            ),
+        ));
+    }
+    classify::output(&mut mesh, points.len(), tris, options)
+}
+
+fn sorted<T: Ord>(mut v: Vec<T>) -> Vec<T> {
+    v.sort_unstable();
+    v
+}
+
+/// Applies `recover` to every item, then again to those it failed on, as long as a pass
+/// recovers something (recovering one item can unblock another); returns the items still
+/// failing.
+fn until_stable<T>(mut pending: Vec<T>, mut recover: impl FnMut(&T) -> Result<bool>) -> Result<Vec<T>> {
+    loop {
+        let before = pending.len();
+        let mut still = Vec::new();
+        for item in pending {
+            if !recover(&item)? {
+                still.push(item);
+            }
+        }
+        if still.is_empty() || still.len() == before {
+            return Ok(still);
+        }
+        pending = still;
+    }
+}
+
+/// Options this version cannot honour yet.
+fn check_options(options: &SurfaceOptions) -> Result<()> {
+    if options.keep_convex_hull {
+        return Err(Error::invalid_argument(
+            "keep_convex_hull is not supported yet",
+        ));
+    }
+    if options.max_radius_edge_ratio > 0.0 || options.max_volume > 0.0 {
+        return Err(Error::invalid_argument(
+            "quality refinement (max_radius_edge_ratio, max_volume) is not supported yet",
+        ));
+    }
+    Ok(())
+}
+
+/// The input edges and triangles, which no flip may destroy.
+fn protected(triangles: &[[u32; 3]]) -> Protected {
+    let mut p = Protected::default();
+    for f in triangles {
+        p.facets.insert(key(*f));
+        for (a, b) in [(f[0], f[1]), (f[1], f[2]), (f[2], f[0])] {
+            p.edges.insert([a.min(b), a.max(b)]);
+        }
+    }
+    p
+}
+
+/// The Delaunay triangulation of the vertices the triangles use and of the corners of a box
+/// three times as large as theirs (George and Borouchaki §5.1), and the used vertices.
+fn enclosed_delaunay(points: &[Point], triangles: &[[u32; 3]]) -> Result<(TetMesh, Vec<u32>)> {
+    let used: Vec<u32> = {
+        let set: HashSet<u32> = triangles.iter().flatten().copied().collect();
+        let mut v: Vec<u32> = set.into_iter().collect();
+        v.sort_unstable();
+        v
+    };
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for &v in &used {
+        for k in 0..3 {
+            lo[k] = lo[k].min(points[v as usize][k]);
+            hi[k] = hi[k].max(points[v as usize][k]);
+        }
+    }
+    let size = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    let mut all = points.to_vec();
+    let mut with_box = used.clone();
+    for corner in 0..8 {
+        let c = [0, 1, 2].map(|k| if corner >> k & 1 == 0 { lo[k] - size } else { hi[k] + size });
+        with_box.push(all.len() as u32);
+        all.push(c);
+    }
+    Ok((TetMesh::delaunay(all, &with_box)?, used))
 }

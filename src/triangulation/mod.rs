@@ -258,6 +258,20 @@ impl<'a> Triangulation<'a> {
         (fa, fb)
     }
 
+    /// The tetrahedra with every finite vertex renumbered as its input index (glued facets
+    /// kept), for callers that go on editing the triangulation by local operations. The input
+    /// must have no duplicate points (a duplicate is referenced by no tetrahedron).
+    pub fn into_input_numbered(mut self) -> Tets {
+        for t in 0..self.tets.slots() as u32 {
+            if self.tets.is_live(t) {
+                let v = self.tets.vertices(t);
+                let renumbered = v.map(|x| if x == INFINITE { x } else { self.order[x as usize] });
+                self.tets.set(t, renumbered);
+            }
+        }
+        self.tets
+    }
+
     /// The result mesh: input points in input order, finite tetrahedra, label 1.
     pub fn into_mesh(self) -> Mesh {
         let n = self.input.len();

@@ -1,0 +1,216 @@
+//! Regions of the recovered mesh and the output (George and Borouchaki §5.3, last remark:
+//! the tetrahedra outside the surface are dropped).
+//!
+//! Regions are the connected components of tetrahedra across facets that are not input
+//! triangles. The component of the infinite tetrahedra (around the enclosing box) is the
+//! outside. The other components are numbered by their smallest bounding input triangle
+//! (the one on its front side first), then seeds relabel or remove them.
+//!
+//! Output invariants: vertices are the input vertices in input order, then the Steiner points
+//! used by kept tetrahedra; facet `k` is input triangle `k`, labels (from, to) with the
+//! right-hand normal pointing from `from` to `to`.
+
+use std::collections::HashMap;
+
+use super::tetmesh::{key, Key, TetMesh};
+use super::SurfaceOptions;
+use crate::error::{Error, Result};
+use crate::mesh::{Mesh, DIMENSION_UNKNOWN};
+use crate::predicates::Sign;
+use crate::triangulation::tets::{FACE, INFINITE};
+
+/// Component id of the outside.
+const OUTSIDE: u32 = 0;
+
+/// The label of every component (0 = dropped) and the component of every tetrahedron slot.
+struct Regions {
+    component: Vec<u32>,
+    label: Vec<i32>,
+}
+
+/// The mesh of the kept regions, with the input triangles as facets.
+pub fn output(
+    mesh: &mut TetMesh,
+    n_input: usize,
+    triangles: &[[u32; 3]],
+    options: &SurfaceOptions,
+) -> Result<Mesh> {
+    let input: HashMap<Key, usize> = triangles
+        .iter()
+        .enumerate()
+        .map(|(k, &f)| (key(f), k))
+        .collect();
+    let component = components(mesh, &input);
+    let regions = label(mesh, component, triangles, options)?;
+    assemble(mesh, n_input, triangles, &regions)
+}
+
+/// Connected components across non-input facets; the infinite tetrahedra's is [`OUTSIDE`].
+fn components(mesh: &TetMesh, input: &HashMap<Key, usize>) -> Vec<u32> {
+    let slots = mesh.tets.slots();
+    let mut component = vec![u32::MAX; slots];
+    let start = mesh.tets.live().find(|&t| mesh.tets.vertices(t).contains(&INFINITE));
+    let order = start.into_iter().chain(mesh.tets.live());
+    let mut next = 0;
+    let mut stack = Vec::new();
+    for seed in order {
+        if component[seed as usize] != u32::MAX {
+            continue;
+        }
+        component[seed as usize] = next;
+        stack.push(seed);
+        while let Some(t) = stack.pop() {
+            let v = mesh.tets.vertices(t);
+            for i in 0..4 {
+                let n = mesh.tets.neighbor(t, i);
+                if component[n as usize] == u32::MAX && !input.contains_key(&key(FACE[i].map(|k| v[k])))
+                {
+                    component[n as usize] = next;
+                    stack.push(n);
+                }
+            }
+        }
+        next += 1;
+    }
+    component
+}
+
+/// The tetrahedra on the front (right-hand normal) and back sides of input triangle `f`.
+fn sides(mesh: &mut TetMesh, f: [u32; 3]) -> Result<(u32, u32)> {
+    let (t, i) = mesh
+        .find_face(f)
+        .ok_or_else(|| Error::internal(format!("input triangle {f:?} is not a facet")))?;
+    let n = mesh.tets.neighbor(t, i);
+    let v = mesh.tets.vertices(t);
+    let stored = FACE[i].map(|k| v[k]);
+    // The apex of t sees `stored` counter-clockwise: t is in front of `stored`, and in front of
+    // `f` iff `f` is an even rotation of `stored`.
+    let r = stored.iter().position(|&x| x == f[0]).unwrap_or(0);
+    let same = stored[(r + 1) % 3] == f[1];
+    Ok(if same { (t, n) } else { (n, t) })
+}
+
+/// Labels of the components: numbered by smallest bounding triangle (front side first), then
+/// region seeds relabel and hole seeds drop theirs.
+fn label(
+    mesh: &mut TetMesh,
+    component: Vec<u32>,
+    triangles: &[[u32; 3]],
+    options: &SurfaceOptions,
+) -> Result<Regions> {
+    let count = component.iter().filter(|&&c| c != u32::MAX).max().map_or(0, |&c| c + 1);
+    let mut label = vec![0i32; count as usize];
+    let mut next = 1 + options.regions.iter().map(|r| r.label).max().unwrap_or(0).max(0);
+    for &f in triangles {
+        let (front, back) = sides(mesh, f)?;
+        for t in [front, back] {
+            let c = component[t as usize];
+            if c != OUTSIDE && label[c as usize] == 0 {
+                label[c as usize] = next;
+                next += 1;
+            }
+        }
+    }
+    for seed in &options.regions {
+        let c = seed_component(mesh, &component, seed.point, "region")?;
+        if c == OUTSIDE {
+            return Err(Error::invalid_argument(format!(
+                "region seed {:?} lies outside the surface",
+                seed.point
+            )));
+        }
+        label[c as usize] = seed.label;
+    }
+    for &h in &options.holes {
+        let c = seed_component(mesh, &component, h, "hole")?;
+        label[c as usize] = 0;
+    }
+    Ok(Regions { component, label })
+}
+
+/// The component of the tetrahedron strictly containing `p` (exact tests).
+fn seed_component(mesh: &TetMesh, component: &[u32], p: [f64; 3], what: &str) -> Result<u32> {
+    for t in mesh.tets.live() {
+        let v = mesh.tets.vertices(t);
+        if v.contains(&INFINITE) {
+            continue;
+        }
+        let signs: Vec<Sign> = (0..4)
+            .map(|i| {
+                let [a, b, c] = FACE[i].map(|k| *mesh.point(v[k]));
+                crate::predicates::orient3d(&a, &b, &c, &p)
+            })
+            .collect();
+        if signs.iter().all(|&s| s == Sign::Positive) {
+            return Ok(component[t as usize]);
+        }
+        if signs.iter().all(|&s| s != Sign::Negative) {
+            return Err(Error::invalid_argument(format!(
+                "{what} seed {p:?} lies on a facet of the mesh: move it off the surface"
+            )));
+        }
+    }
+    Err(Error::invalid_argument(format!(
+        "{what} seed {p:?} lies outside the enclosing box of the surface"
+    )))
+}
+
+/// The output arrays.
+fn assemble(
+    mesh: &mut TetMesh,
+    n_input: usize,
+    triangles: &[[u32; 3]],
+    regions: &Regions,
+) -> Result<Mesh> {
+    let label_of = |t: u32| regions.label[regions.component[t as usize] as usize];
+    let mut number = vec![u32::MAX; mesh.points.len()];
+    for (v, n) in number.iter_mut().enumerate().take(n_input) {
+        *n = v as u32;
+    }
+    let mut vertices: Vec<f64> = mesh.points[..n_input].as_flattened().to_vec();
+    let mut dimensions = vec![DIMENSION_UNKNOWN; n_input];
+    for f in triangles {
+        for &v in f {
+            dimensions[v as usize] = 2;
+        }
+    }
+    let mut tetrahedra = Vec::new();
+    let mut labels = Vec::new();
+    let kept: Vec<u32> = mesh
+        .tets
+        .live()
+        .filter(|&t| !mesh.tets.vertices(t).contains(&INFINITE) && label_of(t) != 0)
+        .collect();
+    for t in kept {
+        for v in mesh.tets.vertices(t) {
+            if number[v as usize] == u32::MAX {
+                number[v as usize] = (vertices.len() / 3) as u32;
+                vertices.extend_from_slice(mesh.point(v));
+                dimensions.push(3);
+            }
+            tetrahedra.push(number[v as usize]);
+        }
+        labels.push(label_of(t));
+    }
+    let mut facet_labels = Vec::with_capacity(2 * triangles.len());
+    for &f in triangles {
+        let (front, back) = sides(mesh, f)?;
+        let side = |t: u32| {
+            if mesh.tets.vertices(t).contains(&INFINITE) {
+                0
+            } else {
+                label_of(t)
+            }
+        };
+        facet_labels.extend_from_slice(&[side(back), side(front)]);
+    }
+    Ok(Mesh {
+        vertices,
+        vertex_dimensions: dimensions,
+        tetrahedra,
+        tetrahedron_labels: labels,
+        facets: triangles.as_flattened().to_vec(),
+        facet_labels,
+        ..Mesh::default()
+    })
+}

@@ -1,0 +1,227 @@
+//! Topological flips on a [`TetMesh`]: the 2-3 flip of a facet and the removal of an edge
+//! (Shewchuk, "Two discrete optimization algorithms for the topological improvement of
+//! tetrahedral meshes", 2002: the shell of `n` tetrahedra around the edge becomes `2n - 4`
+//! tetrahedra over a triangulation of its ring, chosen by dynamic programming; `n = 3` is the
+//! 3-2 flip and `n = 4` the 4-4 flip).
+//!
+//! A flip never destroys a protected edge or facet ([`Protected`]: the input surface) and is
+//! applied only when every new tetrahedron is positively oriented (exact).
+
+use std::collections::HashSet;
+
+use super::tetmesh::{key, Key, TetMesh};
+use crate::error::Result;
+use crate::geometry::{dist2, tet_volume};
+use crate::triangulation::tets::INFINITE;
+
+/// Longest shell an edge removal considers (the dynamic program is cubic in it).
+const MAX_SHELL: usize = 24;
+
+/// The edges and facets no flip may destroy.
+#[derive(Default)]
+pub struct Protected {
+    pub edges: HashSet<[u32; 2]>,
+    pub facets: HashSet<Key>,
+}
+
+impl Protected {
+    pub fn edge(&self, a: u32, b: u32) -> bool {
+        self.edges.contains(&[a.min(b), a.max(b)])
+    }
+
+    pub fn facet(&self, f: [u32; 3]) -> bool {
+        self.facets.contains(&key(f))
+    }
+}
+
+/// Shape of a positively oriented tetrahedron, scale-free, larger is better (0 when flat).
+fn shape(mesh: &TetMesh, q: [u32; 4]) -> f64 {
+    let p = q.map(|v| *mesh.point(v));
+    let mut s = 0.0;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            s += dist2(&p[i], &p[j]);
+        }
+    }
+    tet_volume([&p[0], &p[1], &p[2], &p[3]]).abs() / (s * s.sqrt())
+}
+
+/// Flips the facet `i` of `t` (with the tetrahedron across it) into three tetrahedra around
+/// the edge joining the two apexes. Returns `false`, changing nothing, when the facet is
+/// protected, a tetrahedron is infinite, `allowed` refuses the new edge, or a new
+/// tetrahedron would not be positive.
+pub fn flip23(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    t: u32,
+    i: usize,
+    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+) -> Result<bool> {
+    let (d, [x, y, z]) = mesh.with_apex(t, i);
+    let g = mesh.tets.glued(t, i);
+    let (n, j) = (g >> 2, (g & 3) as usize);
+    let e = mesh.tets.vertices(n)[j];
+    if protected.facet([x, y, z]) || d == INFINITE || e == INFINITE || !allowed(mesh, d, e) {
+        return Ok(false);
+    }
+    let new = [[d, x, y, e], [d, y, z, e], [d, z, x, e]];
+    if !new.iter().all(|&q| mesh.positive(q)) {
+        return Ok(false);
+    }
+    mesh.replace(&[t, n], &new)?;
+    Ok(true)
+}
+
+/// Removes edge `(a, b)`: its shell becomes two fans, from `a` and from
+/// `b`, over the triangulation of the ring that maximizes the worst new tetrahedron's shape
+/// among those whose diagonals `allowed` accepts. Returns `false`, changing nothing, when the
+/// edge or a facet around it is protected, the shell is infinite or longer than
+/// [`MAX_SHELL`], or no triangulation gives positive tetrahedra.
+pub fn remove_edge(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    [a, b]: [u32; 2],
+    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+) -> Result<bool> {
+    if protected.edge(a, b) {
+        return Ok(false);
+    }
+    let Some(t) = mesh.find_edge(a, b) else {
+        return Ok(false);
+    };
+    let Some((shell, ring)) = mesh.shell(t, a, b, MAX_SHELL) else {
+        return Ok(false);
+    };
+    if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
+        return Ok(false);
+    }
+    let Some(triangles) = best_ring_triangulation(mesh, [a, b], &ring, allowed) else {
+        return Ok(false);
+    };
+    let mut new = Vec::with_capacity(2 * triangles.len());
+    for [i, k, j] in triangles {
+        let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
+        new.push([a, wj, wi, wk]);
+        new.push([b, wj, wk, wi]);
+    }
+    mesh.replace(&shell, &new)?;
+    Ok(true)
+}
+
+/// [`remove_edge`], and when it fails, shrinks the shell first (TetGen's `flipnm`): a 2-3
+/// flip of a facet `(a, b, w)` takes `w` out of the ring; where that flip is blocked, the
+/// edges `(a, w)` and `(b, w)` are removed the same way, `level` deep. Flips that do not lead
+/// to the removal are kept (they leave a valid mesh with the protected entities intact).
+/// Every attempt spends one unit of `budget`; at 0 the search gives up.
+pub fn remove_edge_deep(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    [a, b]: [u32; 2],
+    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+    level: u32,
+    budget: &mut usize,
+) -> Result<bool> {
+    loop {
+        if *budget == 0 {
+            return Ok(false);
+        }
+        *budget -= 1;
+        if remove_edge(mesh, protected, [a, b], allowed)? {
+            return Ok(true);
+        }
+        if level == 0 || protected.edge(a, b) {
+            return Ok(false);
+        }
+        let Some(t) = mesh.find_edge(a, b) else {
+            return Ok(true);
+        };
+        let Some((shell, ring)) = mesh.shell(t, a, b, MAX_SHELL) else {
+            return Ok(false);
+        };
+        if ring.len() <= 3 || ring.contains(&INFINITE) {
+            return Ok(false);
+        }
+        let mut shrunk = false;
+        let quads: Vec<[u32; 4]> = shell.iter().map(|&u| mesh.tets.vertices(u)).collect();
+        for (i, &s) in shell.iter().enumerate() {
+            if shell.iter().zip(&quads).any(|(&u, q)| mesh.tets.vertices(u) != *q) {
+                // A failed deeper attempt kept some flips: look at the shell again.
+                shrunk = true;
+                break;
+            }
+            // Facet (a, b, w_i) of tetrahedron (a, b, w_i, w_i+1): opposite w_i+1.
+            let next = ring[(i + 1) % ring.len()];
+            let j = mesh.tets.vertices(s).iter().position(|&x| x == next).unwrap_or(0);
+            if flip23(mesh, protected, s, j, allowed)? {
+                shrunk = true;
+                break;
+            }
+            let w = ring[i];
+            if remove_edge_deep(mesh, protected, [a, w], allowed, level - 1, budget)?
+                || remove_edge_deep(mesh, protected, [b, w], allowed, level - 1, budget)?
+            {
+                shrunk = true;
+                break;
+            }
+        }
+        if !shrunk {
+            return Ok(false);
+        }
+    }
+}
+
+/// The triangles `(i, k, j)`, `i < k < j`, of the triangulation of the ring polygon that
+/// maximizes the smallest shape of the new tetrahedra `(a, w_j, w_i, w_k)` and
+/// `(b, w_j, w_k, w_i)`, all of which must be positive; `None` if there is none.
+fn best_ring_triangulation(
+    mesh: &TetMesh,
+    [a, b]: [u32; 2],
+    ring: &[u32],
+    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+) -> Option<Vec<[usize; 3]>> {
+    let n = ring.len();
+    // best[i][j]: the best worst shape over triangulations of the sub-polygon i..=j, and the
+    // apex k of the triangle on side (i, j).
+    let mut best = vec![vec![(f64::NEG_INFINITY, usize::MAX); n]; n];
+    for i in 0..n - 1 {
+        best[i][i + 1] = (f64::INFINITY, usize::MAX);
+    }
+    let side = |i: usize, j: usize| j == i + 1 || (i == 0 && j == n - 1);
+    for len in 2..n {
+        for i in 0..n - len {
+            let j = i + len;
+            if !side(i, j) && !allowed(mesh, ring[i], ring[j]) {
+                continue;
+            }
+            for k in i + 1..j {
+                let worst = best[i][k].0.min(best[k][j].0);
+                if worst <= best[i][j].0 {
+                    continue;
+                }
+                let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
+                let (ta, tb) = ([a, wj, wi, wk], [b, wj, wk, wi]);
+                if !mesh.positive(ta) || !mesh.positive(tb) {
+                    continue;
+                }
+                let q = worst.min(shape(mesh, ta)).min(shape(mesh, tb));
+                if q > best[i][j].0 {
+                    best[i][j] = (q, k);
+                }
+            }
+        }
+    }
+    if best[0][n - 1].1 == usize::MAX {
+        return None;
+    }
+    let mut triangles = Vec::with_capacity(n - 2);
+    let mut stack = vec![(0, n - 1)];
+    while let Some((i, j)) = stack.pop() {
+        if j > i + 1 {
+            let k = best[i][j].1;
+            triangles.push([i, k, j]);
+            stack.push((i, k));
+            stack.push((k, j));
+        }
+    }
+    Some(triangles)
+}

@@ -1,0 +1,323 @@
+//! The tetrahedral mesh that boundary recovery edits by local operations (George and
+//! Borouchaki §5.2: flips, shell and face splits, point moves), on the flat storage of the
+//! Delaunay triangulation it starts from ([`Tets`]).
+//!
+//! Unlike [`crate::triangulation::Triangulation`] the mesh is not kept Delaunay: every change
+//! is a [`TetMesh::replace`] of a set of tetrahedra by another set with the same boundary,
+//! accepted only when every new tetrahedron is positively oriented (exact `orient3d`).
+//!
+//! Invariants (those of [`Tets`], checked by [`TetMesh::validate`]): vertex ids index
+//! `points`; every live finite tetrahedron is positively oriented; adjacency is symmetric;
+//! `vertex_tet[v]` is a live tetrahedron incident to `v` for every vertex in use.
+
+use crate::error::{Error, Result};
+use crate::predicates::{orient3d, Point, Sign};
+use crate::triangulation::tets::{Tets, FACE, INFINITE};
+use crate::triangulation::Triangulation;
+
+/// No tetrahedron (a vertex not in the mesh).
+pub const NONE: u32 = u32::MAX;
+
+/// A facet by its sorted vertices.
+pub type Key = [u32; 3];
+
+/// The sorted vertices of a facet.
+pub fn key(f: [u32; 3]) -> Key {
+    let mut k = f;
+    k.sort_unstable();
+    k
+}
+
+pub struct TetMesh {
+    pub points: Vec<Point>,
+    pub tets: Tets,
+    vertex_tet: Vec<u32>,
+}
+
+impl TetMesh {
+    /// The Delaunay triangulation of the points `used` (indices into `points`, pairwise
+    /// distinct positions, not all coplanar); other points are not in the mesh.
+    pub fn delaunay(points: Vec<Point>, used: &[u32]) -> Result<Self> {
+        let xyz: Vec<f64> = used.iter().flat_map(|&v| points[v as usize]).collect();
+        let mut triangulation = Triangulation::new(&xyz, None)?;
+        triangulation.insert_all()?;
+        let mut tets = triangulation.into_input_numbered();
+        for t in 0..tets.slots() as u32 {
+            if tets.is_live(t) {
+                let v = tets.vertices(t);
+                tets.set(t, v.map(|x| if x == INFINITE { x } else { used[x as usize] }));
+            }
+        }
+        let mut mesh = TetMesh {
+            vertex_tet: vec![NONE; points.len()],
+            points,
+            tets,
+        };
+        for t in 0..mesh.tets.slots() as u32 {
+            if mesh.tets.is_live(t) {
+                mesh.note_vertices(t);
+            }
+        }
+        Ok(mesh)
+    }
+
+    fn note_vertices(&mut self, t: u32) {
+        for v in self.tets.vertices(t) {
+            if v != INFINITE {
+                self.vertex_tet[v as usize] = t;
+            }
+        }
+    }
+
+    #[inline]
+    pub fn point(&self, v: u32) -> &Point {
+        &self.points[v as usize]
+    }
+
+    /// Adds a point (in no tetrahedron yet) and returns its id.
+    pub fn add_point(&mut self, p: Point) -> u32 {
+        self.points.push(p);
+        self.vertex_tet.push(NONE);
+        (self.points.len() - 1) as u32
+    }
+
+    /// Whether vertex `v` is in some tetrahedron.
+    pub fn in_mesh(&self, v: u32) -> bool {
+        self.vertex_tet[v as usize] != NONE
+    }
+
+    /// Exact orientation of four finite vertices.
+    #[inline]
+    pub fn orient(&self, v: [u32; 4]) -> Sign {
+        orient3d(self.point(v[0]), self.point(v[1]), self.point(v[2]), self.point(v[3]))
+    }
+
+    /// Whether the quadruple is a finite, positively oriented tetrahedron.
+    pub fn positive(&self, v: [u32; 4]) -> bool {
+        !v.contains(&INFINITE) && self.orient(v) == Sign::Positive
+    }
+
+    /// The tetrahedra incident to `v`, found by a search across facets from `vertex_tet`.
+    pub fn ball(&mut self, v: u32) -> Vec<u32> {
+        let start = self.vertex_tet[v as usize];
+        if start == NONE {
+            return Vec::new();
+        }
+        let mut ball = vec![start];
+        self.tets.mark[start as usize] = 1;
+        let mut k = 0;
+        while k < ball.len() {
+            let t = ball[k];
+            k += 1;
+            let verts = self.tets.vertices(t);
+            for i in 0..4 {
+                if verts[i] == v {
+                    continue;
+                }
+                let n = self.tets.neighbor(t, i);
+                if self.tets.mark[n as usize] == 0 {
+                    self.tets.mark[n as usize] = 1;
+                    ball.push(n);
+                }
+            }
+        }
+        for &t in &ball {
+            self.tets.mark[t as usize] = 0;
+        }
+        ball
+    }
+
+    /// A tetrahedron with edge `(a, b)`, if the edge exists.
+    pub fn find_edge(&mut self, a: u32, b: u32) -> Option<u32> {
+        self.ball(a)
+            .into_iter()
+            .find(|&t| self.tets.vertices(t).contains(&b))
+    }
+
+    /// The facet `(t, i)` (tetrahedron and local index of the opposite vertex) with vertices
+    /// `f`, if it exists; either of its two tetrahedra.
+    pub fn find_face(&mut self, f: [u32; 3]) -> Option<(u32, usize)> {
+        let k = key(f);
+        self.ball(f[0]).into_iter().find_map(|t| {
+            let v = self.tets.vertices(t);
+            (0..4).find(|&i| key(FACE[i].map(|j| v[j])) == k).map(|i| (t, i))
+        })
+    }
+
+    /// `(apex, [x, y, z])` with `apex` the vertex `i` of `t` and `(apex, x, y, z)` positively
+    /// oriented (an even permutation of the stored order).
+    pub fn with_apex(&self, t: u32, i: usize) -> (u32, [u32; 3]) {
+        let v = self.tets.vertices(t);
+        let [f0, f1, f2] = FACE[i].map(|k| v[k]);
+        (v[i], [f0, f2, f1])
+    }
+
+    /// The vertices `c, d` of tetrahedron `t` other than `a, b`, ordered so that `(a, b, c, d)`
+    /// is an even permutation of the stored order.
+    pub fn others(&self, t: u32, a: u32, b: u32) -> [u32; 2] {
+        let v = self.tets.vertices(t);
+        let i = v.iter().position(|&x| x == a).unwrap_or(0);
+        let (_, f) = self.with_apex(t, i);
+        // (a, f0, f1, f2) is even; rotate f (an even permutation) until b comes first.
+        let r = f.iter().position(|&x| x == b).unwrap_or(0);
+        [f[(r + 1) % 3], f[(r + 2) % 3]]
+    }
+
+    /// The tetrahedra around edge `(a, b)` of tetrahedron `t`, and the ring `w` of their other
+    /// vertices: tetrahedron `k` is `(a, b, w[k], w[k+1])`, positively oriented (indices mod
+    /// the ring length). `None` if the ring is not closed within `limit` steps.
+    pub fn shell(&self, t: u32, a: u32, b: u32, limit: usize) -> Option<(Vec<u32>, Vec<u32>)> {
+        let [c, d] = self.others(t, a, b);
+        let (mut tets, mut ring) = (vec![t], vec![c, d]);
+        let mut current = t;
+        loop {
+            // Cross the facet (a, b, w_last) into the next tetrahedron: opposite w[len-2].
+            let opposite = ring[ring.len() - 2];
+            let v = self.tets.vertices(current);
+            let i = v.iter().position(|&x| x == opposite)?;
+            current = self.tets.neighbor(current, i);
+            if current == t {
+                ring.pop();
+                return Some((tets, ring));
+            }
+            if tets.len() >= limit {
+                return None;
+            }
+            let [_, next] = self.others(current, a, b);
+            tets.push(current);
+            ring.push(next);
+        }
+    }
+
+    /// Replaces the tetrahedra `old` by `new` (vertex quadruples), which must fill the same
+    /// region: every facet of a new tetrahedron is either a boundary facet of `old` or a facet
+    /// of exactly one other new tetrahedron, and every boundary facet of `old` is used. The
+    /// check is done before anything changes; orientation is the caller's business. Returns
+    /// the new tetrahedra's ids, in the order of `new`.
+    pub fn replace(&mut self, old: &[u32], new: &[[u32; 4]]) -> Result<Vec<u32>> {
+        for &t in old {
+            self.tets.mark[t as usize] = 2;
+        }
+        let mut outer: Vec<(Key, u32)> = Vec::new();
+        for &t in old {
+            let v = self.tets.vertices(t);
+            for i in 0..4 {
+                if self.tets.mark[self.tets.neighbor(t, i) as usize] != 2 {
+                    outer.push((key(FACE[i].map(|k| v[k])), self.tets.glued(t, i)));
+                }
+            }
+        }
+        for &t in old {
+            self.tets.mark[t as usize] = 0;
+        }
+        let gluing = match_facets(&outer, new)?;
+        for &t in old {
+            self.tets.kill(t);
+        }
+        let mut ids = Vec::with_capacity(new.len());
+        for &q in new {
+            let t = self.tets.allocate()?;
+            self.tets.set(t, q);
+            ids.push(t);
+        }
+        for (n, glue) in gluing.iter().enumerate() {
+            for (i, g) in glue.iter().enumerate() {
+                let facet = 4 * ids[n] + i as u32;
+                match *g {
+                    Glue::Outer(f) => self.tets.glue(facet, f),
+                    Glue::Inner(m, j) if m > n => self.tets.glue(facet, 4 * ids[m] + j as u32),
+                    Glue::Inner(..) => {}
+                }
+            }
+        }
+        for &t in &ids {
+            self.note_vertices(t);
+        }
+        Ok(ids)
+    }
+
+    /// Marks `v` as no longer in the mesh (after a replacement that dropped it).
+    pub fn forget(&mut self, v: u32) {
+        self.vertex_tet[v as usize] = NONE;
+    }
+
+    /// Checks the invariants of the module documentation exactly.
+    pub fn validate(&self) -> std::result::Result<(), String> {
+        for t in self.tets.live() {
+            let v = self.tets.vertices(t);
+            if !v.contains(&INFINITE) && self.orient(v) != Sign::Positive {
+                return Err(format!("tetrahedron {t} {v:?} is not positively oriented"));
+            }
+            for i in 0..4 {
+                let g = self.tets.glued(t, i);
+                let (n, j) = (g >> 2, (g & 3) as usize);
+                if !self.tets.is_live(n) || self.tets.glued(n, j) != 4 * t + i as u32 {
+                    return Err(format!("facet {i} of tetrahedron {t} is not glued back"));
+                }
+                let w = self.tets.vertices(n);
+                if key(FACE[i].map(|k| v[k])) != key(FACE[j].map(|k| w[k])) {
+                    return Err(format!("facet {i} of tetrahedron {t} is glued to another facet"));
+                }
+            }
+        }
+        for (v, &t) in self.vertex_tet.iter().enumerate() {
+            if t != NONE && (!self.tets.is_live(t) || !self.tets.vertices(t).contains(&(v as u32)))
+            {
+                return Err(format!("vertex {v} points to tetrahedron {t}, not incident"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Where facet `i` of a new tetrahedron is glued.
+#[derive(Clone, Copy)]
+enum Glue {
+    /// To this facet outside the replaced region.
+    Outer(u32),
+    /// To facet `j` of new tetrahedron `m`.
+    Inner(usize, usize),
+}
+
+/// The gluing of the new tetrahedra's facets, or an internal error naming the first facet
+/// that matches nothing (or too much).
+fn match_facets(outer: &[(Key, u32)], new: &[[u32; 4]]) -> Result<Vec<[Glue; 4]>> {
+    let mut facets: Vec<(Key, usize, usize)> = Vec::with_capacity(4 * new.len());
+    for (n, q) in new.iter().enumerate() {
+        for i in 0..4 {
+            facets.push((key(FACE[i].map(|k| q[k])), n, i));
+        }
+    }
+    facets.sort_unstable();
+    let mut outer: Vec<(Key, u32)> = outer.to_vec();
+    outer.sort_unstable();
+    let mut gluing = vec![[Glue::Outer(0); 4]; new.len()];
+    let mismatch = |k: &Key| Error::internal(format!("retriangulation facet {k:?} matches no facet"));
+    let (mut a, mut b) = (0, 0);
+    while a < facets.len() {
+        let (k, n, i) = facets[a];
+        if a + 1 < facets.len() && facets[a + 1].0 == k {
+            if a + 2 < facets.len() && facets[a + 2].0 == k {
+                return Err(mismatch(&k));
+            }
+            let (_, m, j) = facets[a + 1];
+            gluing[n][i] = Glue::Inner(m, j);
+            gluing[m][j] = Glue::Inner(n, i);
+            a += 2;
+            continue;
+        }
+        if b < outer.len() && outer[b].0 < k {
+            return Err(mismatch(&outer[b].0));
+        }
+        if b == outer.len() || outer[b].0 != k {
+            return Err(mismatch(&k));
+        }
+        gluing[n][i] = Glue::Outer(outer[b].1);
+        b += 1;
+        a += 1;
+    }
+    if b < outer.len() {
+        return Err(mismatch(&outer[b].0));
+    }
+    Ok(gluing)
+}
