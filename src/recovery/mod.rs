@@ -14,6 +14,7 @@
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
 //! vertices in input order followed by the Steiner points, all strictly inside a region.
 
+mod bvh;
 mod classify;
 pub mod edges;
 pub mod faces;

@@ -1,0 +1,194 @@
+//! A bounding-volume hierarchy of axis-aligned boxes, to find the pairs of items whose boxes
+//! overlap in about `O(n log n)` for items spread over a surface.
+//!
+//! The tree is built top down: a node's items are split at the median of their box centers
+//! along the longest axis of the centers' extent, ties broken by item number, so the tree
+//! depends on the boxes only. Building and traversal use explicit stacks: no recursion.
+
+/// A closed axis-aligned box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    pub lo: [f64; 3],
+    pub hi: [f64; 3],
+}
+
+impl Aabb {
+    /// The smallest box holding `points`; `points` must not be empty.
+    pub fn of_points(points: &[[f64; 3]]) -> Aabb {
+        let mut bounds = Aabb {
+            lo: points[0],
+            hi: points[0],
+        };
+        for p in &points[1..] {
+            bounds.include(&Aabb { lo: *p, hi: *p });
+        }
+        bounds
+    }
+
+    /// Grows `self` to hold `other`.
+    fn include(&mut self, other: &Aabb) {
+        for k in 0..3 {
+            self.lo[k] = self.lo[k].min(other.lo[k]);
+            self.hi[k] = self.hi[k].max(other.hi[k]);
+        }
+    }
+
+    /// Whether the closed boxes share a point (touching counts).
+    pub fn overlaps(&self, other: &Aabb) -> bool {
+        (0..3).all(|k| self.lo[k] <= other.hi[k] && other.lo[k] <= self.hi[k])
+    }
+
+    /// Twice the center along `axis`: a sort key (no rounding to halve, no overflow for the
+    /// coordinates the engine accepts).
+    fn center2(&self, axis: usize) -> f64 {
+        self.lo[axis] + self.hi[axis]
+    }
+}
+
+/// Items in a leaf at most.
+const LEAF_SIZE: usize = 4;
+
+/// A node: the box of its items, which are `order[start..end]`, and its two children unless
+/// it is a leaf.
+#[derive(Clone, Debug)]
+struct Node {
+    bounds: Aabb,
+    start: usize,
+    end: usize,
+    children: Option<[usize; 2]>,
+}
+
+/// The hierarchy over items `0..n` given by their boxes.
+#[derive(Clone, Debug)]
+pub struct Bvh {
+    boxes: Vec<Aabb>,
+    /// Item numbers, each node's items contiguous.
+    order: Vec<usize>,
+    /// The root is node 0 (absent when there are no items).
+    nodes: Vec<Node>,
+}
+
+impl Bvh {
+    /// Builds the hierarchy of the items whose boxes are `boxes` (item `i` has `boxes[i]`).
+    pub fn new(boxes: Vec<Aabb>) -> Bvh {
+        let mut bvh = Bvh {
+            order: (0..boxes.len()).collect(),
+            boxes,
+            nodes: Vec::new(),
+        };
+        if !bvh.boxes.is_empty() {
+            bvh.build();
+        }
+        bvh
+    }
+
+    /// Splits nodes, from the root holding every item, until leaves hold at most
+    /// [`LEAF_SIZE`] items.
+    fn build(&mut self) {
+        self.nodes.push(self.node(0, self.order.len()));
+        let mut pending = vec![0];
+        while let Some(index) = pending.pop() {
+            let (start, end) = (self.nodes[index].start, self.nodes[index].end);
+            if end - start <= LEAF_SIZE {
+                continue;
+            }
+            let middle = start + (end - start) / 2;
+            self.partition(start, middle, end);
+            let left = self.nodes.len();
+            self.nodes.push(self.node(start, middle));
+            self.nodes.push(self.node(middle, end));
+            self.nodes[index].children = Some([left, left + 1]);
+            pending.extend([left, left + 1]);
+        }
+    }
+
+    /// A leaf node over `order[start..end]`.
+    fn node(&self, start: usize, end: usize) -> Node {
+        let mut bounds = self.boxes[self.order[start]];
+        for &item in &self.order[start + 1..end] {
+            bounds.include(&self.boxes[item]);
+        }
+        Node {
+            bounds,
+            start,
+            end,
+            children: None,
+        }
+    }
+
+    /// Reorders `order[start..end]` so that the items before `middle` have the smaller centers
+    /// along the axis where the centers spread most (ties: smaller item number first).
+    fn partition(&mut self, start: usize, middle: usize, end: usize) {
+        let boxes = &self.boxes;
+        let items = &mut self.order[start..end];
+        let axis = longest_axis(items.iter().map(|&i| &boxes[i]));
+        items.select_nth_unstable_by(middle - start, |&i, &j| {
+            boxes[i]
+                .center2(axis)
+                .total_cmp(&boxes[j].center2(axis))
+                .then(i.cmp(&j))
+        });
+    }
+
+    /// Calls `visit(i, j)`, `i < j`, once for every pair of distinct items whose boxes overlap.
+    pub fn for_each_overlapping_pair(&self, mut visit: impl FnMut(usize, usize)) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut pending = vec![(0, 0)];
+        while let Some((a, b)) = pending.pop() {
+            let (na, nb) = (&self.nodes[a], &self.nodes[b]);
+            if a == b {
+                match na.children {
+                    Some([l, r]) => pending.extend([(l, l), (r, r), (l, r)]),
+                    None => self.leaf_pairs(a, a, &mut visit),
+                }
+                continue;
+            }
+            if !na.bounds.overlaps(&nb.bounds) {
+                continue;
+            }
+            match (na.children, nb.children) {
+                (None, None) => self.leaf_pairs(a, b, &mut visit),
+                (Some([l, r]), None) => pending.extend([(l, b), (r, b)]),
+                (None, Some([l, r])) => pending.extend([(a, l), (a, r)]),
+                (Some([l, r]), Some(_)) if na.end - na.start >= nb.end - nb.start => {
+                    pending.extend([(l, b), (r, b)])
+                }
+                (Some(_), Some([l, r])) => pending.extend([(a, l), (a, r)]),
+            }
+        }
+    }
+
+    /// Visits the overlapping pairs of items of leaves `a` and `b`: each pair once, and only
+    /// `i < j` in the leaf when `a` and `b` are the same leaf.
+    fn leaf_pairs(&self, a: usize, b: usize, visit: &mut impl FnMut(usize, usize)) {
+        let (na, nb) = (&self.nodes[a], &self.nodes[b]);
+        for (k, &i) in self.order[na.start..na.end].iter().enumerate() {
+            let others = if a == b {
+                &self.order[na.start + k + 1..na.end]
+            } else {
+                &self.order[nb.start..nb.end]
+            };
+            for &j in others {
+                if self.boxes[i].overlaps(&self.boxes[j]) {
+                    visit(i.min(j), i.max(j));
+                }
+            }
+        }
+    }
+}
+
+/// The axis along which the centers of `boxes` spread most (the first such axis on ties).
+fn longest_axis<'a>(boxes: impl Iterator<Item = &'a Aabb>) -> usize {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for b in boxes {
+        for k in 0..3 {
+            lo[k] = lo[k].min(b.center2(k));
+            hi[k] = hi[k].max(b.center2(k));
+        }
+    }
+    let extent = |k: usize| hi[k] - lo[k];
+    (1..3).fold(0, |best, k| if extent(k) > extent(best) { k } else { best })
+}
