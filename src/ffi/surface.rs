@@ -112,9 +112,10 @@ pub unsafe extern "C" fn delmesh_tetrahedralize_surface_regions(
 
 /// Tetrahedralizes the surface of the file `path` as `delmesh_tetrahedralize_surface_regions`
 /// does. Formats, by extension (ASCII case ignored): `.off`, `.stl` (ASCII or binary; equal
-/// coordinates are one vertex), `.obj` (faces of any size, fanned), `.ply` (ASCII or binary),
-/// TetGen `.poly` and `.smesh` (polygonal facets with holes are triangulated first; the
-/// file's region and hole seeds are used).
+/// coordinates are one vertex), `.obj`, `.ply` (ASCII or binary), TetGen `.poly` and
+/// `.smesh` (the file's region and hole seeds are used). Polygons, with their holes in
+/// `.poly` facets, are triangulated first in their plane with their own corners (ear
+/// clipping); the output facets are those triangles.
 ///
 /// Errors: those of `delmesh_tetrahedralize_surface`; NULL `path` ->
 /// DELMESH_ERROR_NULL_ARGUMENT; an unknown extension -> DELMESH_ERROR_INVALID_ARGUMENT; an

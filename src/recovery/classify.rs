@@ -41,7 +41,7 @@ pub fn output(
         .map(|(k, &f)| (key(f), k))
         .collect();
     let component = components(mesh, &input);
-    let regions = label(mesh, component, triangles, options)?;
+    let regions = label(mesh, &input, component, triangles, options)?;
     assemble(mesh, n_input, triangles, &regions)
 }
 
@@ -49,7 +49,10 @@ pub fn output(
 fn components(mesh: &TetMesh, input: &HashMap<Key, usize>) -> Vec<u32> {
     let slots = mesh.tets.slots();
     let mut component = vec![u32::MAX; slots];
-    let start = mesh.tets.live().find(|&t| mesh.tets.vertices(t).contains(&INFINITE));
+    let start = mesh
+        .tets
+        .live()
+        .find(|&t| mesh.tets.vertices(t).contains(&INFINITE));
     let order = start.into_iter().chain(mesh.tets.live());
     let mut next = 0;
     let mut stack = Vec::new();
@@ -60,10 +63,9 @@ fn components(mesh: &TetMesh, input: &HashMap<Key, usize>) -> Vec<u32> {
         component[seed as usize] = next;
         stack.push(seed);
         while let Some(t) = stack.pop() {
-            let v = mesh.tets.vertices(t);
             for i in 0..4 {
                 let n = mesh.tets.neighbor(t, i);
-                if component[n as usize] == u32::MAX && !input.contains_key(&key(FACE[i].map(|k| v[k])))
+                if component[n as usize] == u32::MAX && !input.contains_key(&key(mesh.facet(t, i)))
                 {
                     component[n as usize] = next;
                     stack.push(n);
@@ -81,8 +83,7 @@ fn sides(mesh: &mut TetMesh, f: [u32; 3]) -> Result<(u32, u32)> {
         .find_face(f)
         .ok_or_else(|| Error::internal(format!("input triangle {f:?} is not a facet")))?;
     let n = mesh.tets.neighbor(t, i);
-    let v = mesh.tets.vertices(t);
-    let stored = FACE[i].map(|k| v[k]);
+    let stored = mesh.facet(t, i);
     // The apex of t sees `stored` counter-clockwise: t is in front of `stored`, and in front of
     // `f` iff `f` is an even rotation of `stored`.
     let r = stored.iter().position(|&x| x == f[0]).unwrap_or(0);
@@ -94,13 +95,24 @@ fn sides(mesh: &mut TetMesh, f: [u32; 3]) -> Result<(u32, u32)> {
 /// region seeds relabel and hole seeds drop theirs.
 fn label(
     mesh: &mut TetMesh,
+    input: &HashMap<Key, usize>,
     component: Vec<u32>,
     triangles: &[[u32; 3]],
     options: &SurfaceOptions,
 ) -> Result<Regions> {
-    let count = component.iter().filter(|&&c| c != u32::MAX).max().map_or(0, |&c| c + 1);
+    let count = component
+        .iter()
+        .filter(|&&c| c != u32::MAX)
+        .max()
+        .map_or(0, |&c| c + 1);
     let mut label = vec![0i32; count as usize];
-    let mut next = 1 + options.regions.iter().map(|r| r.label).max().unwrap_or(0).max(0);
+    let mut next = 1 + options
+        .regions
+        .iter()
+        .map(|r| r.label)
+        .max()
+        .unwrap_or(0)
+        .max(0);
     for &f in triangles {
         let (front, back) = sides(mesh, f)?;
         for t in [front, back] {
@@ -112,7 +124,7 @@ fn label(
         }
     }
     for seed in &options.regions {
-        let c = seed_component(mesh, &component, seed.point, "region")?;
+        let c = seed_component(mesh, input, &component, seed.point, "region")?;
         if c == OUTSIDE {
             return Err(Error::invalid_argument(format!(
                 "region seed {:?} lies outside the surface",
@@ -122,14 +134,21 @@ fn label(
         label[c as usize] = seed.label;
     }
     for &h in &options.holes {
-        let c = seed_component(mesh, &component, h, "hole")?;
+        let c = seed_component(mesh, input, &component, h, "hole")?;
         label[c as usize] = 0;
     }
     Ok(Regions { component, label })
 }
 
-/// The component of the tetrahedron strictly containing `p` (exact tests).
-fn seed_component(mesh: &TetMesh, component: &[u32], p: [f64; 3], what: &str) -> Result<u32> {
+/// The component of a tetrahedron whose closure holds `p` (exact tests); a point on an input
+/// triangle is refused.
+fn seed_component(
+    mesh: &TetMesh,
+    input: &HashMap<Key, usize>,
+    component: &[u32],
+    p: [f64; 3],
+    what: &str,
+) -> Result<u32> {
     for t in mesh.tets.live() {
         let v = mesh.tets.vertices(t);
         if v.contains(&INFINITE) {
@@ -141,14 +160,18 @@ fn seed_component(mesh: &TetMesh, component: &[u32], p: [f64; 3], what: &str) ->
                 crate::predicates::orient3d(&a, &b, &c, &p)
             })
             .collect();
-        if signs.iter().all(|&s| s == Sign::Positive) {
-            return Ok(component[t as usize]);
+        if signs.contains(&Sign::Negative) {
+            continue;
         }
-        if signs.iter().all(|&s| s != Sign::Negative) {
+        // In the closed tetrahedron: fine unless on an input triangle.
+        let on_surface =
+            (0..4).any(|i| signs[i] == Sign::Zero && input.contains_key(&key(mesh.facet(t, i))));
+        if on_surface {
             return Err(Error::invalid_argument(format!(
-                "{what} seed {p:?} lies on a facet of the mesh: move it off the surface"
+                "{what} seed {p:?} lies on the surface: move it into a region"
             )));
         }
+        return Ok(component[t as usize]);
     }
     Err(Error::invalid_argument(format!(
         "{what} seed {p:?} lies outside the enclosing box of the surface"

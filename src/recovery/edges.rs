@@ -129,7 +129,9 @@ fn unblock(mesh: &mut TetMesh, protected: &Protected, c: Crossing) -> Result<boo
             }
             Ok(false)
         }
-        Crossing::Edge(e, _) => remove_edge_deep(mesh, protected, e, &any, DEPTH, &mut BUDGET.to_owned()),
+        Crossing::Edge(e, _) => {
+            remove_edge_deep(mesh, protected, e, &any, DEPTH, &mut BUDGET.to_owned())
+        }
         Crossing::Vertex(_) => Ok(false),
     }
 }

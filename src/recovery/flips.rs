@@ -144,14 +144,23 @@ pub fn remove_edge_deep(
         let mut shrunk = false;
         let quads: Vec<[u32; 4]> = shell.iter().map(|&u| mesh.tets.vertices(u)).collect();
         for (i, &s) in shell.iter().enumerate() {
-            if shell.iter().zip(&quads).any(|(&u, q)| mesh.tets.vertices(u) != *q) {
+            if shell
+                .iter()
+                .zip(&quads)
+                .any(|(&u, q)| mesh.tets.vertices(u) != *q)
+            {
                 // A failed deeper attempt kept some flips: look at the shell again.
                 shrunk = true;
                 break;
             }
             // Facet (a, b, w_i) of tetrahedron (a, b, w_i, w_i+1): opposite w_i+1.
             let next = ring[(i + 1) % ring.len()];
-            let j = mesh.tets.vertices(s).iter().position(|&x| x == next).unwrap_or(0);
+            let j = mesh
+                .tets
+                .vertices(s)
+                .iter()
+                .position(|&x| x == next)
+                .unwrap_or(0);
             if flip23(mesh, protected, s, j, allowed)? {
                 shrunk = true;
                 break;

@@ -19,6 +19,9 @@ mod classify;
 pub mod edges;
 pub mod faces;
 pub mod flips;
+pub mod partition;
+pub mod steiner;
+pub mod suppress;
 pub mod tetmesh;
 pub mod validate;
 
@@ -27,8 +30,8 @@ use std::collections::HashSet;
 use crate::error::{Error, ErrorKind, Result};
 use crate::mesh::Mesh;
 use crate::predicates::Point;
-use flips::Protected;
-use tetmesh::{key, TetMesh};
+use partition::Partition;
+use tetmesh::TetMesh;
 
 /// A region seed (TetGen `.poly` semantics): the region containing `point` gets `label`
 /// and, when `max_volume > 0`, that bound on its tetrahedra's volumes.
@@ -82,47 +85,75 @@ pub fn tetrahedralize_surface(
     }
     validate::check_surface(points, tris)?;
     check_options(options)?;
-    let (mut mesh, used) = enclosed_delaunay(points, tris)?;
-    let _ = used;
-    let protected = protected(tris);
-    let edges: Vec<[u32; 2]> = protected.edges.iter().copied().collect::<Vec<_>>();
-    let edges = sorted(edges);
-    let stuck = until_stable(edges, |&[a, b]| edges::recover_edge(&mut mesh, &protected, a, b))?;
-    if let Some(&[a, b]) = stuck.first() {
-        let k = tris.iter().position(|f| f.contains(&a) && f.contains(&b)).unwrap_or(0);
-        return Err(Error::new(
-            ErrorKind::Limit,
-            format!(
-                "edge ({a}, {b}) of triangle {k} (and {} more) could not be recovered by flips; \
-                 Steiner points are not supported yet",
-                stuck.len() - 1
-            ),
-        ));
-    }
-    let stuck = until_stable(tris.to_vec(), |&f| faces::recover_face(&mut mesh, &protected, f))?;
-    if let Some(f) = stuck.first() {
-        let k = tris.iter().position(|g| g == f).unwrap_or(0);
-        return Err(Error::new(
-            ErrorKind::Limit,
-            format!(
-                "triangle {k} {f:?} (and {} more) could not be recovered by flips; Steiner \
-                 points are not supported yet",
-                stuck.len() - 1
-            ),
-        ));
-    }
+    let mut mesh = enclosed_delaunay(points, tris)?;
+    let mut part = Partition::new(tris);
+    recover(&mut mesh, &mut part, tris.len())?;
+    let normals: Vec<Point> = tris.iter().map(|f| unit_normal(points, *f)).collect();
+    suppress::suppress_all(&mut mesh, &mut part, &normals)?;
+    suppress::merge_interior(&mut mesh, points.len() as u32 + 8)?;
     classify::output(&mut mesh, points.len(), tris, options)
 }
 
-fn sorted<T: Ord>(mut v: Vec<T>) -> Vec<T> {
-    v.sort_unstable();
-    v
+/// Recovers every subface (§5.2): sub-edges first, then subfaces, by flips; where flips
+/// fail, a point is added on the surface at the first crossing and the loop starts again
+/// with the new, smaller pieces. At most `16 * triangles + 1024` points are added.
+fn recover(mesh: &mut TetMesh, part: &mut Partition, triangles: usize) -> Result<()> {
+    let mut budget = 16 * triangles + 1024;
+    loop {
+        let stuck = until_stable(part.subedges(), |&[a, b]| {
+            edges::recover_edge(mesh, &part.protected, a, b)
+        })?;
+        if !stuck.is_empty() {
+            for [a, b] in stuck {
+                spend(&mut budget, || format!("sub-edge ({a}, {b})"))?;
+                if let Some(c) = edges::first_crossing(mesh, a, b)? {
+                    steiner::split_subedge(mesh, part, a, b, c)?;
+                }
+            }
+            continue;
+        }
+        let stuck = until_stable(part.all_subfaces(), |&(_, f)| {
+            faces::recover_face(mesh, &part.protected, f)
+        })?;
+        if stuck.is_empty() {
+            return Ok(());
+        }
+        for (f, t) in stuck {
+            spend(&mut budget, || format!("triangle {f}"))?;
+            if let Some(&(e, _)) = faces::crossing_edges(mesh, t).first() {
+                steiner::split_subface(mesh, part, f, t, e)?;
+            }
+        }
+    }
+}
+
+/// Counts one added point against `budget`.
+fn spend(budget: &mut usize, what: impl Fn() -> String) -> Result<()> {
+    if *budget == 0 {
+        return Err(Error::new(
+            ErrorKind::Limit,
+            format!("too many points added on the surface to recover {}", what()),
+        ));
+    }
+    *budget -= 1;
+    Ok(())
+}
+
+/// The unit normal of triangle `f` (right-hand rule).
+fn unit_normal(points: &[Point], f: [u32; 3]) -> Point {
+    let [a, b, c] = f.map(|v| points[v as usize]);
+    let n = crate::geometry::cross(&crate::geometry::sub(&b, &a), &crate::geometry::sub(&c, &a));
+    let l = crate::geometry::norm(&n);
+    [n[0] / l, n[1] / l, n[2] / l]
 }
 
 /// Applies `recover` to every item, then again to those it failed on, as long as a pass
 /// recovers something (recovering one item can unblock another); returns the items still
 /// failing.
-fn until_stable<T>(mut pending: Vec<T>, mut recover: impl FnMut(&T) -> Result<bool>) -> Result<Vec<T>> {
+fn until_stable<T>(
+    mut pending: Vec<T>,
+    mut recover: impl FnMut(&T) -> Result<bool>,
+) -> Result<Vec<T>> {
     loop {
         let before = pending.len();
         let mut still = Vec::new();
@@ -153,21 +184,9 @@ fn check_options(options: &SurfaceOptions) -> Result<()> {
     Ok(())
 }
 
-/// The input edges and triangles, which no flip may destroy.
-fn protected(triangles: &[[u32; 3]]) -> Protected {
-    let mut p = Protected::default();
-    for f in triangles {
-        p.facets.insert(key(*f));
-        for (a, b) in [(f[0], f[1]), (f[1], f[2]), (f[2], f[0])] {
-            p.edges.insert([a.min(b), a.max(b)]);
-        }
-    }
-    p
-}
-
 /// The Delaunay triangulation of the vertices the triangles use and of the corners of a box
-/// three times as large as theirs (George and Borouchaki §5.1), and the used vertices.
-fn enclosed_delaunay(points: &[Point], triangles: &[[u32; 3]]) -> Result<(TetMesh, Vec<u32>)> {
+/// three times as large as theirs (George and Borouchaki §5.1).
+fn enclosed_delaunay(points: &[Point], triangles: &[[u32; 3]]) -> Result<TetMesh> {
     let used: Vec<u32> = {
         let set: HashSet<u32> = triangles.iter().flatten().copied().collect();
         let mut v: Vec<u32> = set.into_iter().collect();
@@ -186,9 +205,15 @@ fn enclosed_delaunay(points: &[Point], triangles: &[[u32; 3]]) -> Result<(TetMes
     let mut all = points.to_vec();
     let mut with_box = used.clone();
     for corner in 0..8 {
-        let c = [0, 1, 2].map(|k| if corner >> k & 1 == 0 { lo[k] - size } else { hi[k] + size });
+        let c = [0, 1, 2].map(|k| {
+            if corner >> k & 1 == 0 {
+                lo[k] - size
+            } else {
+                hi[k] + size
+            }
+        });
         with_box.push(all.len() as u32);
         all.push(c);
     }
-    Ok((TetMesh::delaunay(all, &with_box)?, used))
+    TetMesh::delaunay(all, &with_box)
 }

@@ -45,7 +45,10 @@ impl TetMesh {
         for t in 0..tets.slots() as u32 {
             if tets.is_live(t) {
                 let v = tets.vertices(t);
-                tets.set(t, v.map(|x| if x == INFINITE { x } else { used[x as usize] }));
+                tets.set(
+                    t,
+                    v.map(|x| if x == INFINITE { x } else { used[x as usize] }),
+                );
             }
         }
         let mut mesh = TetMesh {
@@ -81,6 +84,12 @@ impl TetMesh {
         (self.points.len() - 1) as u32
     }
 
+    /// Drops the last point added, which no tetrahedron uses.
+    pub fn pop_point(&mut self) {
+        self.points.pop();
+        self.vertex_tet.pop();
+    }
+
     /// Whether vertex `v` is in some tetrahedron.
     pub fn in_mesh(&self, v: u32) -> bool {
         self.vertex_tet[v as usize] != NONE
@@ -89,7 +98,12 @@ impl TetMesh {
     /// Exact orientation of four finite vertices.
     #[inline]
     pub fn orient(&self, v: [u32; 4]) -> Sign {
-        orient3d(self.point(v[0]), self.point(v[1]), self.point(v[2]), self.point(v[3]))
+        orient3d(
+            self.point(v[0]),
+            self.point(v[1]),
+            self.point(v[2]),
+            self.point(v[3]),
+        )
     }
 
     /// Whether the quadruple is a finite, positively oriented tetrahedron.
@@ -110,8 +124,8 @@ impl TetMesh {
             let t = ball[k];
             k += 1;
             let verts = self.tets.vertices(t);
-            for i in 0..4 {
-                if verts[i] == v {
+            for (i, &x) in verts.iter().enumerate() {
+                if x == v {
                     continue;
                 }
                 let n = self.tets.neighbor(t, i);
@@ -140,8 +154,18 @@ impl TetMesh {
         let k = key(f);
         self.ball(f[0]).into_iter().find_map(|t| {
             let v = self.tets.vertices(t);
-            (0..4).find(|&i| key(FACE[i].map(|j| v[j])) == k).map(|i| (t, i))
+            (0..4)
+                .find(|&i| key(FACE[i].map(|j| v[j])) == k)
+                .map(|i| (t, i))
         })
+    }
+
+    /// The vertices of facet `i` of `t` (opposite vertex `i`), seen counter-clockwise from
+    /// inside `t`.
+    #[inline]
+    pub fn facet(&self, t: u32, i: usize) -> [u32; 3] {
+        let v = self.tets.vertices(t);
+        FACE[i].map(|k| v[k])
     }
 
     /// `(apex, [x, y, z])` with `apex` the vertex `i` of `t` and `(apex, x, y, z)` positively
@@ -195,21 +219,7 @@ impl TetMesh {
     /// check is done before anything changes; orientation is the caller's business. Returns
     /// the new tetrahedra's ids, in the order of `new`.
     pub fn replace(&mut self, old: &[u32], new: &[[u32; 4]]) -> Result<Vec<u32>> {
-        for &t in old {
-            self.tets.mark[t as usize] = 2;
-        }
-        let mut outer: Vec<(Key, u32)> = Vec::new();
-        for &t in old {
-            let v = self.tets.vertices(t);
-            for i in 0..4 {
-                if self.tets.mark[self.tets.neighbor(t, i) as usize] != 2 {
-                    outer.push((key(FACE[i].map(|k| v[k])), self.tets.glued(t, i)));
-                }
-            }
-        }
-        for &t in old {
-            self.tets.mark[t as usize] = 0;
-        }
+        let outer = self.outer_facets(old);
         let gluing = match_facets(&outer, new)?;
         for &t in old {
             self.tets.kill(t);
@@ -236,6 +246,32 @@ impl TetMesh {
         Ok(ids)
     }
 
+    /// Whether `new` would fill exactly the region of `old` facet for facet
+    /// ([`TetMesh::replace`]'s precondition).
+    pub fn fits(&mut self, old: &[u32], new: &[[u32; 4]]) -> bool {
+        let outer = self.outer_facets(old);
+        match_facets(&outer, new).is_ok()
+    }
+
+    /// The boundary facets of the set `old`, each with the facet glued to it outside.
+    fn outer_facets(&mut self, old: &[u32]) -> Vec<(Key, u32)> {
+        for &t in old {
+            self.tets.mark[t as usize] = 2;
+        }
+        let mut outer: Vec<(Key, u32)> = Vec::new();
+        for &t in old {
+            for i in 0..4 {
+                if self.tets.mark[self.tets.neighbor(t, i) as usize] != 2 {
+                    outer.push((key(self.facet(t, i)), self.tets.glued(t, i)));
+                }
+            }
+        }
+        for &t in old {
+            self.tets.mark[t as usize] = 0;
+        }
+        outer
+    }
+
     /// Marks `v` as no longer in the mesh (after a replacement that dropped it).
     pub fn forget(&mut self, v: u32) {
         self.vertex_tet[v as usize] = NONE;
@@ -254,16 +290,19 @@ impl TetMesh {
                 if !self.tets.is_live(n) || self.tets.glued(n, j) != 4 * t + i as u32 {
                     return Err(format!("facet {i} of tetrahedron {t} is not glued back"));
                 }
-                let w = self.tets.vertices(n);
-                if key(FACE[i].map(|k| v[k])) != key(FACE[j].map(|k| w[k])) {
-                    return Err(format!("facet {i} of tetrahedron {t} is glued to another facet"));
+                if key(self.facet(t, i)) != key(self.facet(n, j)) {
+                    return Err(format!(
+                        "facet {i} of tetrahedron {t} is glued to another facet"
+                    ));
                 }
             }
         }
         for (v, &t) in self.vertex_tet.iter().enumerate() {
             if t != NONE && (!self.tets.is_live(t) || !self.tets.vertices(t).contains(&(v as u32)))
             {
-                return Err(format!("vertex {v} points to tetrahedron {t}, not incident"));
+                return Err(format!(
+                    "vertex {v} points to tetrahedron {t}, not incident"
+                ));
             }
         }
         Ok(())
@@ -284,15 +323,16 @@ enum Glue {
 fn match_facets(outer: &[(Key, u32)], new: &[[u32; 4]]) -> Result<Vec<[Glue; 4]>> {
     let mut facets: Vec<(Key, usize, usize)> = Vec::with_capacity(4 * new.len());
     for (n, q) in new.iter().enumerate() {
-        for i in 0..4 {
-            facets.push((key(FACE[i].map(|k| q[k])), n, i));
+        for (i, face) in FACE.iter().enumerate() {
+            facets.push((key(face.map(|k| q[k])), n, i));
         }
     }
     facets.sort_unstable();
     let mut outer: Vec<(Key, u32)> = outer.to_vec();
     outer.sort_unstable();
     let mut gluing = vec![[Glue::Outer(0); 4]; new.len()];
-    let mismatch = |k: &Key| Error::internal(format!("retriangulation facet {k:?} matches no facet"));
+    let mismatch =
+        |k: &Key| Error::internal(format!("retriangulation facet {k:?} matches no facet"));
     let (mut a, mut b) = (0, 0);
     while a < facets.len() {
         let (k, n, i) = facets[a];

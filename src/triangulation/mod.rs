@@ -265,7 +265,13 @@ impl<'a> Triangulation<'a> {
         for t in 0..self.tets.slots() as u32 {
             if self.tets.is_live(t) {
                 let v = self.tets.vertices(t);
-                let renumbered = v.map(|x| if x == INFINITE { x } else { self.order[x as usize] });
+                let renumbered = v.map(|x| {
+                    if x == INFINITE {
+                        x
+                    } else {
+                        self.order[x as usize]
+                    }
+                });
                 self.tets.set(t, renumbered);
             }
         }

@@ -58,6 +58,8 @@ mod stl;
 mod tetgen;
 mod text;
 
+pub(crate) use polygon::triangulate_polygon;
+
 use std::path::Path;
 
 use crate::error::{Error, ErrorKind, Result};

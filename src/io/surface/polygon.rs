@@ -17,7 +17,7 @@ use crate::predicates::{orient2d, Point, Sign};
 /// `points`): a triangle as is, a larger polygon triangulated in its plane after its
 /// repeated consecutive corners are dropped. The error is the reason, for the caller to
 /// place.
-pub(super) fn triangulate_polygon(
+pub(crate) fn triangulate_polygon(
     points: &[Point],
     corners: &[u32],
     triangles: &mut Vec<u32>,

@@ -1,0 +1,186 @@
+//! Points added on the input surface where flips cannot recover it (George and Borouchaki
+//! §5.2): at the intersection of a missing sub-edge with the first facet or edge it crosses,
+//! or of a mesh edge with a missing subface. The tetrahedra around the crossed facet (two)
+//! or edge (its shell) are replaced by the cone from the new point over their boundary.
+//!
+//! The point is computed in floating point, so it lies on the surface only up to rounding;
+//! which input edge or triangle it belongs to is recorded combinatorially
+//! ([`super::partition`]). The cone is accepted only if every new tetrahedron is positive.
+
+use super::edges::Crossing;
+use super::partition::Partition;
+use super::tetmesh::TetMesh;
+use crate::error::{Error, ErrorKind, Result};
+use crate::geometry::{add, cross, dot, sub};
+use crate::predicates::Point;
+
+fn scale(u: &Point, s: f64) -> Point {
+    [u[0] * s, u[1] * s, u[2] * s]
+}
+
+/// The point of segment `(u, v)` on the plane of `(a, b, c)`.
+fn segment_plane(u: &Point, v: &Point, [a, b, c]: [&Point; 3]) -> Point {
+    let n = cross(&sub(b, a), &sub(c, a));
+    let (du, dv) = (dot(&n, &sub(u, a)), dot(&n, &sub(v, a)));
+    let t = du / (du - dv);
+    add(u, &scale(&sub(v, u), t))
+}
+
+/// The point of line `(p, q)` closest to line `(x, y)`.
+fn line_line(p: &Point, q: &Point, x: &Point, y: &Point) -> Point {
+    let (d1, d2) = (sub(q, p), sub(y, x));
+    let n = cross(&d1, &d2);
+    let s = dot(&cross(&sub(x, p), &d2), &n) / dot(&n, &n);
+    add(p, &scale(&d1, s))
+}
+
+fn failure(what: String) -> Error {
+    Error::new(ErrorKind::Limit, what)
+}
+
+/// Replaces the tetrahedra `set`, or failing that `set` grown by its neighbours across
+/// unprotected facets (at most [`GROWTH`] times: the rounded point may fall just outside
+/// `set`), by the cone from the new point `p` over their boundary.
+fn cone(mesh: &mut TetMesh, part: &Partition, set: &[u32], p: Point) -> Result<Option<u32>> {
+    let mut set = set.to_vec();
+    for _ in 0..=GROWTH {
+        if let Some(s) = cone_over(mesh, &set, p)? {
+            return Ok(Some(s));
+        }
+        set = grown(mesh, part, &set);
+    }
+    Ok(None)
+}
+
+/// How many times [`cone`] grows its set.
+const GROWTH: usize = 2;
+
+/// `set` and its neighbours across facets that are not protected.
+fn grown(mesh: &mut TetMesh, part: &Partition, set: &[u32]) -> Vec<u32> {
+    let mut out = set.to_vec();
+    for &t in set {
+        mesh.tets.mark[t as usize] = 3;
+    }
+    for &t in set {
+        for k in 0..4 {
+            let n = mesh.tets.neighbor(t, k);
+            let f = mesh.facet(t, k);
+            if mesh.tets.mark[n as usize] != 3 && !part.protected.facet(f) {
+                mesh.tets.mark[n as usize] = 3;
+                out.push(n);
+            }
+        }
+    }
+    for &t in &out {
+        mesh.tets.mark[t as usize] = 0;
+    }
+    out
+}
+
+/// The cone from `p` over the boundary of `set`, if every tetrahedron is positive.
+fn cone_over(mesh: &mut TetMesh, set: &[u32], p: Point) -> Result<Option<u32>> {
+    for &t in set {
+        mesh.tets.mark[t as usize] = 3;
+    }
+    let mut new = Vec::new();
+    let s = mesh.points.len() as u32;
+    for &t in set {
+        for k in 0..4 {
+            if mesh.tets.mark[mesh.tets.neighbor(t, k) as usize] != 3 {
+                let [a, b, c] = mesh.facet(t, k);
+                new.push([a, b, c, s]);
+            }
+        }
+    }
+    for &t in set {
+        mesh.tets.mark[t as usize] = 0;
+    }
+    let s = mesh.add_point(p);
+    if !new.iter().all(|&q| mesh.positive(q)) || !mesh.fits(set, &new) {
+        mesh.pop_point();
+        return Ok(None);
+    }
+    mesh.replace(set, &new)?;
+    Ok(Some(s))
+}
+
+/// Adds a point on sub-edge `(p, q)` where it first crosses the mesh from `p`.
+pub fn split_subedge(
+    mesh: &mut TetMesh,
+    part: &mut Partition,
+    p: u32,
+    q: u32,
+    crossing: Crossing,
+) -> Result<()> {
+    let (pp, pq) = (*mesh.point(p), *mesh.point(q));
+    let (set, point) = match crossing {
+        Crossing::Facet(t, i) => {
+            let (_, f) = mesh.with_apex(t, i);
+            if part.protected.facet(f) {
+                return Err(failure(format!(
+                    "sub-edge ({p}, {q}) crosses the surface piece {f:?}: rounding"
+                )));
+            }
+            let n = mesh.tets.neighbor(t, i);
+            let corners = f.map(|v| mesh.point(v));
+            (vec![t, n], segment_plane(&pp, &pq, corners))
+        }
+        Crossing::Edge([x, y], t) => {
+            if part.protected.edge(x, y) {
+                return Err(failure(format!(
+                    "sub-edge ({p}, {q}) crosses the surface edge ({x}, {y}): rounding"
+                )));
+            }
+            let Some((shell, _)) = mesh.shell(t, x, y, usize::MAX) else {
+                return Err(Error::internal("open shell"));
+            };
+            (shell, line_line(&pp, &pq, mesh.point(x), mesh.point(y)))
+        }
+        Crossing::Vertex(v) => {
+            return Err(Error::invalid_input(format!(
+                "vertex {v} lies on the edge ({p}, {q})"
+            )))
+        }
+    };
+    match cone(mesh, part, &set, point)? {
+        Some(s) => {
+            part.split_edge(p, q, s);
+            Ok(())
+        }
+        None => Err(failure(format!(
+            "no valid point found on the sub-edge ({p}, {q}) near {point:?}"
+        ))),
+    }
+}
+
+/// Adds a point where edge `(u, v)` crosses subface `t` of input triangle `f`.
+pub fn split_subface(
+    mesh: &mut TetMesh,
+    part: &mut Partition,
+    f: usize,
+    t: [u32; 3],
+    [u, v]: [u32; 2],
+) -> Result<()> {
+    if part.protected.edge(u, v) {
+        return Err(failure(format!(
+            "the surface edge ({u}, {v}) crosses the surface piece {t:?}: rounding"
+        )));
+    }
+    let Some(tet) = mesh.find_edge(u, v) else {
+        return Err(Error::internal(format!("edge ({u}, {v}) vanished")));
+    };
+    let Some((shell, _)) = mesh.shell(tet, u, v, usize::MAX) else {
+        return Err(Error::internal("open shell"));
+    };
+    let corners = t.map(|w| mesh.point(w));
+    let point = segment_plane(mesh.point(u), mesh.point(v), corners);
+    match cone(mesh, part, &shell, point)? {
+        Some(s) => {
+            part.split_face(f, t, s);
+            Ok(())
+        }
+        None => Err(failure(format!(
+            "no valid point found on triangle {f} where edge ({u}, {v}) crosses it"
+        ))),
+    }
+}

@@ -1,0 +1,290 @@
+//! Removal of the points added on the input surface (George and Borouchaki §5.3): a point
+//! `P` of the partition leaves the surface. In every input triangle holding it, the subfaces
+//! around `P` are replaced by a triangulation of their outline without `P`; the input
+//! triangles through `P` cut its star into pieces (two for a point inside a triangle, one per
+//! wedge between consecutive triangles for a point on an edge), and each piece gets its own
+//! copy of `P` moved off the surface into the piece, far enough for every new tetrahedron to
+//! be positive. The copies are ordinary interior points; those outside the surface go with
+//! the outside.
+//!
+//! The paper proves the moved point exists (the piece is star-shaped from `P`, which sees
+//! the outline's triangulation from its side); here the move is searched along the sum of
+//! the piece's side normals, halving the distance until every new tetrahedron is positive.
+
+use std::collections::HashMap;
+
+use super::partition::{Host, Partition};
+use super::tetmesh::{key, Key, TetMesh};
+use crate::error::{Error, ErrorKind, Result};
+use crate::geometry::{add, dist, norm};
+use crate::io::surface::triangulate_polygon;
+use crate::predicates::Point;
+
+/// Halvings of the move before giving up.
+const MOVES: usize = 48;
+
+/// One input triangle through the removed point: its old subfaces there and their
+/// replacement.
+struct Patch {
+    face: usize,
+    old: Vec<[u32; 3]>,
+    new: Vec<[u32; 3]>,
+}
+
+/// Moves every point of the partition off the surface: points inside triangles first, then
+/// points on edges. `normals[f]` is the unit normal of input triangle `f`.
+pub fn suppress_all(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point]) -> Result<()> {
+    let mut inside: Vec<u32> = Vec::new();
+    let mut on_edges: Vec<u32> = Vec::new();
+    for (&v, host) in &part.host {
+        match host {
+            Host::Face(_) => inside.push(v),
+            Host::Edge(_) => on_edges.push(v),
+        }
+    }
+    inside.sort_unstable();
+    on_edges.sort_unstable();
+    for v in inside.into_iter().chain(on_edges) {
+        suppress(mesh, part, normals, v)?;
+    }
+    Ok(())
+}
+
+fn failure(message: String) -> Error {
+    Error::new(ErrorKind::Limit, message)
+}
+
+/// The subfaces of `face` around `p`, and the triangulation of their outline without `p`.
+fn patch(mesh: &TetMesh, part: &Partition, face: usize, p: u32) -> Result<Patch> {
+    let old = part.fan(face, p);
+    let mut next: HashMap<u32, u32> = HashMap::new();
+    for &s in &old {
+        let r = s.iter().position(|&x| x == p).unwrap_or(0);
+        next.insert(s[(r + 1) % 3], s[(r + 2) % 3]);
+    }
+    let targets: Vec<u32> = next.values().copied().collect();
+    let start = next
+        .keys()
+        .copied()
+        .filter(|k| !targets.contains(k))
+        .min()
+        .or_else(|| next.keys().copied().min())
+        .ok_or_else(|| Error::internal(format!("point {p} is in no subface of triangle {face}")))?;
+    let mut outline = vec![start];
+    let mut at = start;
+    while let Some(&n) = next.get(&at) {
+        if n == start || outline.len() > old.len() {
+            break;
+        }
+        outline.push(n);
+        at = n;
+    }
+    let closed = next.get(&at) == Some(&start);
+    let expected = if closed { old.len() } else { old.len() + 1 };
+    if outline.len() != expected {
+        return Err(Error::internal(format!(
+            "the subfaces of triangle {face} around point {p} are not a fan"
+        )));
+    }
+    let mut flat = Vec::new();
+    triangulate_polygon(&mesh.points, &outline, &mut flat).map_err(|why| {
+        failure(format!(
+            "the outline of point {p} in triangle {face} cannot be triangulated: {why}"
+        ))
+    })?;
+    let new = flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
+    Ok(Patch { face, old, new })
+}
+
+/// Whether tetrahedron `t` lies in front of (on the right-hand normal side of) its facet
+/// `k`, given as the oriented triangle `s`.
+fn in_front(mesh: &TetMesh, t: u32, k: usize, s: [u32; 3]) -> bool {
+    let stored = mesh.facet(t, k);
+    let r = stored.iter().position(|&x| x == s[0]).unwrap_or(0);
+    stored[(r + 1) % 3] == s[1]
+}
+
+/// Moves point `p` off the surface.
+fn suppress(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32) -> Result<()> {
+    let faces = part.faces_of(p);
+    let patches: Vec<Patch> = faces
+        .iter()
+        .map(|&f| patch(mesh, part, f, p))
+        .collect::<Result<_>>()?;
+    let mut separators: HashMap<Key, (usize, [u32; 3])> = HashMap::new();
+    for (j, patch) in patches.iter().enumerate() {
+        for &s in &patch.old {
+            separators.insert(key(s), (j, s));
+        }
+    }
+    let ball = mesh.ball(p);
+    let pieces = pieces(mesh, &ball, p, &separators);
+    let origin = *mesh.point(p);
+    let reach = ball
+        .iter()
+        .flat_map(|&t| mesh.tets.vertices(t))
+        .filter(|&v| v != p)
+        .map(|v| dist(&origin, mesh.point(v)))
+        .fold(f64::INFINITY, f64::min);
+    let mut all = Vec::new();
+    for piece in pieces {
+        let sides = bounding_sides(mesh, &piece, p, &separators);
+        let mut normal = [0.0; 3];
+        for &(j, front) in &sides {
+            let n = normals[patches[j].face];
+            let sign = if front { 1.0 } else { -1.0 };
+            normal = add(&normal, &[sign * n[0], sign * n[1], sign * n[2]]);
+        }
+        let length = norm(&normal);
+        let q = mesh.add_point(origin);
+        let mut tets: Vec<[u32; 4]> = piece
+            .iter()
+            .map(|&t| mesh.tets.vertices(t).map(|v| if v == p { q } else { v }))
+            .collect();
+        for &(j, front) in &sides {
+            for &[x, y, z] in &patches[j].new {
+                tets.push(if front { [x, y, z, q] } else { [y, x, z, q] });
+            }
+        }
+        let mut step = 0.25 * reach / length;
+        let mut placed = false;
+        for _ in 0..MOVES {
+            mesh.points[q as usize] = add(
+                &origin,
+                &[step * normal[0], step * normal[1], step * normal[2]],
+            );
+            if length > 0.0 && tets.iter().all(|&t| mesh.positive(t)) {
+                placed = true;
+                break;
+            }
+            step *= 0.5;
+        }
+        if !placed {
+            return Err(failure(format!(
+                "point {p} added on the surface near {origin:?} could not be moved off it"
+            )));
+        }
+        all.extend(tets);
+    }
+    mesh.replace(&ball, &all)?;
+    mesh.forget(p);
+    for patch in &patches {
+        part.retriangulate(patch.face, &patch.old, &patch.new);
+    }
+    part.host.remove(&p);
+    Ok(())
+}
+
+/// The tetrahedra of `ball` (the star of `p`) grouped by the surface through `p`.
+fn pieces(
+    mesh: &mut TetMesh,
+    ball: &[u32],
+    p: u32,
+    separators: &HashMap<Key, (usize, [u32; 3])>,
+) -> Vec<Vec<u32>> {
+    for &t in ball {
+        mesh.tets.mark[t as usize] = 4;
+    }
+    let mut pieces = Vec::new();
+    for &seed in ball {
+        if mesh.tets.mark[seed as usize] != 4 {
+            continue;
+        }
+        mesh.tets.mark[seed as usize] = 5;
+        let mut piece = vec![seed];
+        let mut k = 0;
+        while k < piece.len() {
+            let t = piece[k];
+            k += 1;
+            let v = mesh.tets.vertices(t);
+            for (i, &apex) in v.iter().enumerate() {
+                let f = mesh.facet(t, i);
+                if apex == p || separators.contains_key(&key(f)) {
+                    continue;
+                }
+                let n = mesh.tets.neighbor(t, i);
+                if mesh.tets.mark[n as usize] == 4 {
+                    mesh.tets.mark[n as usize] = 5;
+                    piece.push(n);
+                }
+            }
+        }
+        pieces.push(piece);
+    }
+    for &t in ball {
+        mesh.tets.mark[t as usize] = 0;
+    }
+    pieces
+}
+
+/// The patches bounding a piece, each with the side the piece is on (`true`: in front).
+fn bounding_sides(
+    mesh: &TetMesh,
+    piece: &[u32],
+    p: u32,
+    separators: &HashMap<Key, (usize, [u32; 3])>,
+) -> Vec<(usize, bool)> {
+    let mut sides = Vec::new();
+    for &t in piece {
+        let v = mesh.tets.vertices(t);
+        for (i, &apex) in v.iter().enumerate() {
+            if apex == p {
+                continue;
+            }
+            if let Some(&(j, s)) = separators.get(&key(mesh.facet(t, i))) {
+                let side = (j, in_front(mesh, t, i, s));
+                if !sides.contains(&side) {
+                    sides.push(side);
+                }
+            }
+        }
+    }
+    sides.sort_unstable();
+    sides
+}
+
+/// Merges the points moved off the surface into a neighbour where possible (George and
+/// Borouchaki §5.3, "some added points may simply vanish by merging"): point `s` collapses
+/// onto the nearest vertex `q` of its star for which every tetrahedron of the star without
+/// `q` stays positive with `s` replaced by `q`. Points `first..` are tried in order.
+pub fn merge_interior(mesh: &mut TetMesh, first: u32) -> Result<()> {
+    for s in first..mesh.points.len() as u32 {
+        if mesh.in_mesh(s) {
+            collapse(mesh, s)?;
+        }
+    }
+    Ok(())
+}
+
+/// Collapses `s` onto the nearest vertex of its star that allows it; `false` if none does.
+fn collapse(mesh: &mut TetMesh, s: u32) -> Result<bool> {
+    let ball = mesh.ball(s);
+    let mut link: Vec<u32> = ball
+        .iter()
+        .flat_map(|&t| mesh.tets.vertices(t))
+        .filter(|&v| v != s && v != crate::triangulation::tets::INFINITE)
+        .collect();
+    link.sort_unstable();
+    link.dedup();
+    let at = *mesh.point(s);
+    link.sort_by(|&a, &b| {
+        dist(&at, mesh.point(a))
+            .partial_cmp(&dist(&at, mesh.point(b)))
+            .unwrap_or(std::cmp::Ordering::Equal)
+            .then(a.cmp(&b))
+    });
+    for q in link {
+        let new: Vec<[u32; 4]> = ball
+            .iter()
+            .map(|&t| mesh.tets.vertices(t))
+            .filter(|v| !v.contains(&q))
+            .map(|v| v.map(|x| if x == s { q } else { x }))
+            .collect();
+        if new.iter().all(|&t| mesh.positive(t)) && mesh.fits(&ball, &new) {
+            mesh.replace(&ball, &new)?;
+            mesh.forget(s);
+            return Ok(true);
+        }
+    }
+    Ok(false)
+}
