@@ -56,6 +56,50 @@ int ref_cgal_convex_hull(const double *xyz, size_t n, uint32_t **triangles, size
 int ref_tetgen_delaunay(const double *xyz, size_t n, uint32_t **tets, size_t *tet_count,
                         RefTiming *timing);
 
+/* ---- Surfaces (piecewise linear complexes) ------------------------------------------------- */
+
+/* TetGen's tetrahedralization of a closed surface (ref_tetgen_surface, ref_tetgen_polygons). */
+typedef struct RefSurfaceMesh {
+  double *xyz;          /* 3 * vertex_count: the n input points first (same order, bit for bit),
+                           then the Steiner points the tetrahedra use, in TetGen's order */
+  size_t vertex_count;
+  size_t steiner_count; /* vertex_count - n */
+  size_t boundary_steiner; /* of them, those on TetGen's boundary faces: it split the surface */
+  uint32_t *tets;       /* 4 * tet_count, TetGen's vertex order (positively oriented in
+                           delmesh's convention; the tests check it) */
+  int32_t *labels;      /* tet_count: TetGen's region attribute (switch A), rounded */
+  size_t tet_count;
+} RefSurfaceMesh;
+
+/* Releases the arrays of `m` (NULL allowed) and zeroes it. */
+void ref_surface_mesh_free(RefSurfaceMesh *m);
+
+/* TetGen tetrahedralize() of the surface made of the `m` triangles `tris` (3 input indices
+ * each) over the `n` points `xyz`: one facet of one polygon per triangle. `regions` holds
+ * `n_regions` records (x, y, z, label, max volume) and `holes` `n_holes` points (x, y, z), as
+ * in TetGen's .poly files (NULL with a count of 0 when none). `switches` are the caller's, e.g.
+ * "pYQ" or "pq1.414YQ"; the shim puts "zJA" in front (0-based output; keep every input point
+ * so that the numbering stays the input's; region attributes, which TetGen also gives when no
+ * seed is given: one number per region it finds), and "a" when a region has a max volume > 0.
+ * Output points beyond the input's that no tetrahedron uses (Steiner points TetGen inserted and
+ * then suppressed) are dropped. TetGen 1.5.0 leaves attribute 0 on tetrahedra it creates when
+ * suppressing boundary Steiner points (-Y); the shim gives them their region's attribute
+ * (ref_tetgen.cpp). Fails if TetGen throws (it reports errors by throwing an int), or if its
+ * output does not start with the n input points unchanged. TetGen 1.5.0 also stops on failed
+ * assert()s (abort) on some inputs with -Y: callers that must survive that run this in a child
+ * process. `timing` as for the Delaunay calls, the shim's renumbering included. */
+int ref_tetgen_surface(const double *xyz, size_t n, const uint32_t *tris, size_t m,
+                       const double *regions, size_t n_regions, const double *holes,
+                       size_t n_holes, const char *switches, RefSurfaceMesh *out,
+                       RefTiming *timing);
+
+/* The same with polygonal facets: facet f is the polygon corners[offsets[f] .. offsets[f+1])
+ * (offsets has m + 1 entries), one polygon per facet, as in TetGen's .smesh files. */
+int ref_tetgen_polygons(const double *xyz, size_t n, const uint32_t *corners,
+                        const size_t *offsets, size_t m, const double *regions, size_t n_regions,
+                        const double *holes, size_t n_holes, const char *switches,
+                        RefSurfaceMesh *out, RefTiming *timing);
+
 #ifdef __cplusplus
 }
 #endif
