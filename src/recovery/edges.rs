@@ -17,8 +17,8 @@ const MAX_FLIPS: usize = 256;
 
 /// How deep [`remove_edge_deep`] goes to unblock a star, and how many edge removals it
 /// tries.
-const DEPTH: u32 = 2;
-const BUDGET: usize = 64;
+const DEPTH: u32 = 3;
+const BUDGET: usize = 256;
 
 /// What the segment from a vertex meets first, leaving that vertex's star.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -99,9 +99,21 @@ pub fn tetrahedralize_surface(
 /// with the new, smaller pieces. At most `16 * triangles + 1024` points are added.
 fn recover(mesh: &mut TetMesh, part: &mut Partition, triangles: usize) -> Result<()> {
     let mut budget = 16 * triangles + 1024;
+    // What is recovered stays: flips never destroy a protected edge or facet.
+    let mut edges_done: HashSet<[u32; 2]> = HashSet::new();
+    let mut faces_done: HashSet<[u32; 3]> = HashSet::new();
     loop {
-        let stuck = until_stable(part.subedges(), |&[a, b]| {
-            edges::recover_edge(mesh, &part.protected, a, b)
+        let pending: Vec<[u32; 2]> = part
+            .subedges()
+            .into_iter()
+            .filter(|e| !edges_done.contains(e))
+            .collect();
+        let stuck = until_stable(pending, |&[a, b]| {
+            let done = edges::recover_edge(mesh, &part.protected, a, b)?;
+            if done {
+                edges_done.insert([a, b]);
+            }
+            Ok(done)
         })?;
         if !stuck.is_empty() {
             for [a, b] in stuck {
@@ -112,8 +124,17 @@ fn recover(mesh: &mut TetMesh, part: &mut Partition, triangles: usize) -> Result
             }
             continue;
         }
-        let stuck = until_stable(part.all_subfaces(), |&(_, f)| {
-            faces::recover_face(mesh, &part.protected, f)
+        let pending: Vec<(usize, [u32; 3])> = part
+            .all_subfaces()
+            .into_iter()
+            .filter(|(_, f)| !faces_done.contains(f))
+            .collect();
+        let stuck = until_stable(pending, |&(_, f)| {
+            let done = faces::recover_face(mesh, &part.protected, f)?;
+            if done {
+                faces_done.insert(f);
+            }
+            Ok(done)
         })?;
         if stuck.is_empty() {
             return Ok(());
@@ -176,9 +197,10 @@ fn check_options(options: &SurfaceOptions) -> Result<()> {
             "keep_convex_hull is not supported yet",
         ));
     }
-    if options.max_radius_edge_ratio > 0.0 || options.max_volume > 0.0 {
+    let region_volume = options.regions.iter().any(|r| r.max_volume > 0.0);
+    if options.max_radius_edge_ratio > 0.0 || options.max_volume > 0.0 || region_volume {
         return Err(Error::invalid_argument(
-            "quality refinement (max_radius_edge_ratio, max_volume) is not supported yet",
+            "quality refinement (max_radius_edge_ratio, max_volume, region volume bounds) is not supported yet",
         ));
     }
     Ok(())

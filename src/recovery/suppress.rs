@@ -248,12 +248,17 @@ fn bounding_sides(
 /// onto the nearest vertex `q` of its star for which every tetrahedron of the star without
 /// `q` stays positive with `s` replaced by `q`. Points `first..` are tried in order.
 pub fn merge_interior(mesh: &mut TetMesh, first: u32) -> Result<()> {
-    for s in first..mesh.points.len() as u32 {
-        if mesh.in_mesh(s) {
-            collapse(mesh, s)?;
+    loop {
+        let mut merged = false;
+        for s in first..mesh.points.len() as u32 {
+            if mesh.in_mesh(s) {
+                merged |= collapse(mesh, s)?;
+            }
+        }
+        if !merged {
+            return Ok(());
         }
     }
-    Ok(())
 }
 
 /// Collapses `s` onto the nearest vertex of its star that allows it; `false` if none does.
