@@ -526,3 +526,117 @@ pub(super) fn conflict<'a>(v: [u32; 3], at: impl Fn(u32) -> &'a [f64; 2], p: &[f
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    //! The output of the triangulation, storage order included, is pinned by digests recorded
+    //! from the first implementation: faster versions must return the very same arrays.
+
+    use super::*;
+
+    /// FNV-1a over 32-bit words.
+    fn digest(words: impl IntoIterator<Item = u32>) -> u64 {
+        words.into_iter().fold(0xcbf2_9ce4_8422_2325, |h, w| {
+            (h ^ u64::from(w)).wrapping_mul(0x0000_0100_0000_01b3)
+        })
+    }
+
+    /// Digests of [`Delaunay2d::triangles`], of [`Delaunay2d::compact`] and of
+    /// [`Delaunay2d::duplicate_of`].
+    fn digests(t: &Delaunay2d) -> [u64; 3] {
+        t.validate().expect("valid triangulation");
+        let (tri, adj) = t.compact();
+        [
+            digest(t.triangles().into_iter().flatten()),
+            digest(tri.into_iter().chain(adj).flatten()),
+            digest(t.duplicate_of().iter().copied()),
+        ]
+    }
+
+    /// `n` points uniform in the unit square (splitmix64).
+    fn random(n: usize, seed: u64) -> Vec<[f64; 2]> {
+        let mut s = seed;
+        let mut next = move || {
+            s = s.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = s;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+        };
+        (0..n).map(|_| [next(), next()]).collect()
+    }
+
+    /// A grid of `nx` by `ny` points with spacing `h` from `origin`, row by row, then a copy
+    /// of every seventh point.
+    fn grid(nx: usize, ny: usize, origin: [f64; 2], h: f64) -> Vec<[f64; 2]> {
+        let mut points: Vec<[f64; 2]> = (0..nx * ny)
+            .map(|i| {
+                let (x, y) = ((i % nx) as f64, (i / nx) as f64);
+                [origin[0] + h * x, origin[1] + h * y]
+            })
+            .collect();
+        let copies: Vec<[f64; 2]> = points.iter().step_by(7).copied().collect();
+        points.extend(copies);
+        points
+    }
+
+    /// The 12 integer points of the circle of radius 5, then points inside and outside it
+    /// on the axes and diagonals, some on the lines of hull edges.
+    fn circle_and_lines() -> Vec<[f64; 2]> {
+        let mut points = Vec::new();
+        for (x, y) in [(5.0, 0.0), (4.0, 3.0), (3.0, 4.0)] {
+            for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
+                points.push([sx * x, sy * y]);
+            }
+        }
+        for k in -8..=8 {
+            let k = f64::from(k);
+            points.extend([[k, 0.0], [0.0, k], [k, k], [k, -k], [k, 8.0], [8.0, k]]);
+        }
+        points
+    }
+
+    /// Checks the digests of the triangulation of `points`.
+    fn pinned(name: &str, points: &[[f64; 2]], expected: [u64; 3]) {
+        let t = Delaunay2d::new(points).expect("triangulation");
+        assert_eq!(digests(&t), expected, "{name}");
+    }
+
+    #[test]
+    fn output_is_pinned() {
+        let random_5000 = [
+            7266733511350691420,
+            3018588063268334660,
+            8360184612080058621,
+        ];
+        pinned("random 5000", &random(5000, 1), random_5000);
+        let grid_60x45 = [
+            10692263968186970707,
+            13903305351444640834,
+            11106632706369812180,
+        ];
+        pinned("grid 60x45", &grid(60, 45, [0.0, 0.0], 1.0), grid_60x45);
+        let far_grid = [
+            11039683707364735046,
+            16231483669408021937,
+            15035201911905487843,
+        ];
+        pinned("far grid", &grid(30, 30, [1e6, -3e5], 0.125), far_grid);
+        let circle = [
+            12000577562879130945,
+            4969806758058743661,
+            13965967664374871501,
+        ];
+        pinned("circle and lines", &circle_and_lines(), circle);
+        let tiny = [37743822014092726, 8608560544623792813, 10952987118811563378];
+        pinned("tiny random 10", &random(10, 2), tiny);
+        let points = grid(25, 25, [0.0, 0.0], 1.0);
+        let t = Delaunay2d::of_subset(&points, |i| i % 3 != 1 || i > 600).expect("subset");
+        let subset = [
+            9299206514313908263,
+            14637634767595405173,
+            4365311750728550582,
+        ];
+        assert_eq!(digests(&t), subset, "subset of a grid");
+    }
+}
