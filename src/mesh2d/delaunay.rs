@@ -17,10 +17,14 @@
 //! [`incircle_sos`], so the triangulation is a function of the point set, not of the
 //! insertion order. Points on the line of a hull edge are in conflict with its infinite
 //! triangle only when they lie strictly between its ends.
+//!
+//! The points are inserted along a Hilbert curve; the storage order of the triangles (hence
+//! of [`Delaunay2d::triangles`] and [`Delaunay2d::compact`]) follows from that order, from the
+//! order in which each cavity is searched and from the reuse of freed slots, last freed first.
 
 use std::collections::HashMap;
 
-use super::exact::{dot_sign, incircle_sos};
+use super::exact::{dot_sign, incircle_sos, Adaptive, BoxFilter2d, Predicates2d};
 use crate::error::{Error, Result};
 use crate::predicates::{orient2d, Sign};
 
@@ -30,27 +34,53 @@ pub const INFINITE: u32 = u32::MAX;
 /// No triangle.
 const NONE: u32 = u32::MAX;
 
+/// Bits per axis of the Hilbert curve of the insertion order.
+const HILBERT_BITS: u32 = 16;
+
+/// A triangle of the triangulation: its vertices and its neighbours.
+#[derive(Clone, Copy, Debug)]
+struct Triangle {
+    /// Vertex ids (ranks in the insertion order), counter-clockwise.
+    v: [u32; 3],
+    /// Neighbour across the edge opposite each slot.
+    n: [u32; 3],
+}
+
+/// The vertices of a free slot (no live triangle has two infinite vertices).
+const FREED: [u32; 3] = [INFINITE; 3];
+
 /// A Delaunay triangulation of a point set given by index into `points`.
+///
+/// Vertices are numbered internally by insertion order (their coordinates stored in that
+/// order, so that the points a walk or a cavity touches are close in memory); every method
+/// takes and returns the indices of `points`.
 pub struct Delaunay2d<'a> {
     points: &'a [[f64; 2]],
-    /// Three vertex ids per triangle.
-    tri: Vec<[u32; 3]>,
-    /// Neighbour across the edge opposite each slot.
-    adj: Vec<[u32; 3]>,
-    alive: Vec<bool>,
+    /// The coordinates of the vertices, in insertion order.
+    coords: Vec<[f64; 2]>,
+    /// The index in `points` of each vertex.
+    label: Vec<u32>,
+    /// The triangles, live or freed ([`FREED`]).
+    tris: Vec<Triangle>,
+    /// Freed slots, reused last freed first.
     free: Vec<u32>,
     hint: u32,
     rng: u32,
     /// `duplicate_of[i]`: the vertex point `i` was merged onto (`i` when it is a vertex, NONE
     /// when not inserted).
     duplicate_of: Vec<u32>,
+    /// The predicates for the box of the points.
+    filter: BoxFilter2d,
     // Scratch of one insertion, kept to avoid allocations.
+    /// `mark[t] == stamp`: triangle `t` is in the current cavity. A freed slot's mark is older
+    /// than any later stamp.
     mark: Vec<u32>,
     stamp: u32,
     cavity: Vec<u32>,
     stack: Vec<u32>,
-    starts: HashMap<u32, u32>,
-    created: Vec<u32>,
+    /// The new triangles of the current insertion, each with the cavity triangle and slot of
+    /// its boundary edge.
+    created: Vec<(u32, u32, usize)>,
 }
 
 impl<'a> Delaunay2d<'a> {
@@ -64,40 +94,32 @@ impl<'a> Delaunay2d<'a> {
     /// The Delaunay triangulation of the points `i` with `keep(i)` (the others are no
     /// vertex; [`Self::duplicate_of`] is NONE for them), as [`Self::new`].
     pub fn of_subset(points: &'a [[f64; 2]], keep: impl Fn(u32) -> bool) -> Result<Self> {
+        let (lo, hi) = bounding_box(points);
+        let (first, unique) = first_along(points, &hilbert_sorted(points, lo, hi));
+        let label: Vec<u32> = unique.into_iter().filter(|&i| keep(i)).collect();
         let mut t = Delaunay2d {
             points,
-            tri: Vec::new(),
-            adj: Vec::new(),
-            alive: Vec::new(),
+            coords: label.iter().map(|&i| points[i as usize]).collect(),
+            label,
+            tris: Vec::new(),
             free: Vec::new(),
             hint: 0,
             rng: 0x9e37_79b9,
-            duplicate_of: vec![NONE; points.len()],
+            duplicate_of: first
+                .into_iter()
+                .map(|f| if keep(f) { f } else { NONE })
+                .collect(),
+            filter: BoxFilter2d::new(lo, hi),
             mark: Vec::new(),
             stamp: 0,
             cavity: Vec::new(),
             stack: Vec::new(),
-            starts: HashMap::new(),
             created: Vec::new(),
         };
-        let first = first_duplicates(points);
-        let order: Vec<u32> = hilbert_order(points)
-            .into_iter()
-            .filter(|&i| keep(first[i as usize]))
-            .collect();
-        let seed = t.seed(&order, &first)?;
-        for &i in &order {
-            if seed.contains(&i) {
-                continue;
-            }
-            if first[i as usize] != i {
-                continue;
-            }
-            t.insert(i)?;
-        }
-        for (i, &f) in first.iter().enumerate() {
-            if f as usize != i && keep(f) {
-                t.duplicate_of[i] = f;
+        let seed = t.seed()?;
+        for v in 0..t.coords.len() as u32 {
+            if !seed.contains(&v) {
+                t.insert(v);
             }
         }
         Ok(t)
@@ -110,25 +132,27 @@ impl<'a> Delaunay2d<'a> {
 
     /// The finite triangles, counter-clockwise, in storage order.
     pub fn triangles(&self) -> Vec<[u32; 3]> {
-        (0..self.tri.len())
-            .filter(|&t| self.alive[t] && !self.tri[t].contains(&INFINITE))
-            .map(|t| self.tri[t])
+        self.tris
+            .iter()
+            .filter(|t| !t.v.contains(&INFINITE))
+            .map(|t| self.labeled(t.v))
             .collect()
     }
 
     /// Every live triangle, finite or infinite, renumbered compactly: its vertices and its
     /// neighbours (same conventions as the module documentation).
     pub fn compact(&self) -> (Vec<[u32; 3]>, Vec<[u32; 3]>) {
-        let mut id = vec![NONE; self.tri.len()];
-        let live: Vec<usize> = (0..self.tri.len()).filter(|&t| self.alive[t]).collect();
-        for (new, &t) in live.iter().enumerate() {
-            id[t] = new as u32;
+        let mut id = vec![NONE; self.tris.len()];
+        let live: Vec<&Triangle> = self.tris.iter().filter(|t| t.v != FREED).collect();
+        let mut next = 0;
+        for (t, slot) in self.tris.iter().zip(&mut id) {
+            if t.v != FREED {
+                *slot = next;
+                next += 1;
+            }
         }
-        let tri = live.iter().map(|&t| self.tri[t]).collect();
-        let adj = live
-            .iter()
-            .map(|&t| self.adj[t].map(|n| id[n as usize]))
-            .collect();
+        let tri = live.iter().map(|t| self.labeled(t.v)).collect();
+        let adj = live.iter().map(|t| t.n.map(|n| id[n as usize])).collect();
         (tri, adj)
     }
 
@@ -136,11 +160,11 @@ impl<'a> Delaunay2d<'a> {
     /// for edges of finite and infinite triangles alike.
     pub fn directed_edges(&self) -> HashMap<(u32, u32), (u32, usize)> {
         let mut map = HashMap::new();
-        for t in 0..self.tri.len() {
-            if !self.alive[t] {
+        for (t, tri) in self.tris.iter().enumerate() {
+            if tri.v == FREED {
                 continue;
             }
-            let v = self.tri[t];
+            let v = self.labeled(tri.v);
             for k in 0..3 {
                 map.insert((v[(k + 1) % 3], v[(k + 2) % 3]), (t as u32, k));
             }
@@ -160,41 +184,48 @@ impl<'a> Delaunay2d<'a> {
         let (Some(&(t, k)), Some(&(u, l))) = (edges.get(&(a, b)), edges.get(&(b, a))) else {
             return false;
         };
-        let c = self.tri[t as usize][k];
-        let d = self.tri[u as usize][l];
+        let c = self.tris[t as usize].v[k];
+        let d = self.tris[u as usize].v[l];
         if c == INFINITE || d == INFINITE {
             return true;
         }
         let p = |i: u32| &self.points[i as usize];
+        let [c, d] = [c, d].map(|v| self.label[v as usize]);
         crate::predicates::incircle(p(a), p(b), p(c), p(d)) != Sign::Zero
     }
 
-    /// The first triangle: three non-collinear points, the earliest in `order`.
-    fn seed(&mut self, order: &[u32], first: &[u32]) -> Result<[u32; 3]> {
-        let unique: Vec<u32> = order
-            .iter()
-            .copied()
-            .filter(|&i| first[i as usize] == i)
-            .collect();
-        let p = |i: u32| &self.points[i as usize];
-        let (Some(&a), Some(&b)) = (unique.first(), unique.get(1)) else {
+    /// The input indices of vertices `v`.
+    fn labeled(&self, v: [u32; 3]) -> [u32; 3] {
+        v.map(|x| {
+            if x == INFINITE {
+                x
+            } else {
+                self.label[x as usize]
+            }
+        })
+    }
+
+    /// The first triangle: vertices 0 and 1 and the first vertex after them that is not on
+    /// their line.
+    fn seed(&mut self) -> Result<[u32; 3]> {
+        let p = |v: usize| &self.coords[v];
+        if self.coords.len() < 2 {
             return Err(Error::invalid_input(
                 "fewer than 3 distinct points: no triangle can be formed",
             ));
-        };
-        let Some(&c) = unique[2..]
-            .iter()
-            .find(|&&c| orient2d(p(a), p(b), p(c)) != Sign::Zero)
+        }
+        let Some(c) = (2..self.coords.len()).find(|&c| orient2d(p(0), p(1), p(c)) != Sign::Zero)
         else {
             return Err(Error::invalid_input(
                 "all points are collinear: no triangle can be formed",
             ));
         };
-        let (a, b) = if orient2d(p(a), p(b), p(c)) == Sign::Positive {
-            (a, b)
+        let (a, b) = if orient2d(p(0), p(1), p(c)) == Sign::Positive {
+            (0, 1)
         } else {
-            (b, a)
+            (1, 0)
         };
+        let c = c as u32;
         let triangles = [
             [a, b, c],
             [c, b, INFINITE],
@@ -204,108 +235,108 @@ impl<'a> Delaunay2d<'a> {
         for v in triangles {
             self.new_triangle(v);
         }
-        self.link_by_edges(&[0, 1, 2, 3]);
-        for v in [a, b, c] {
-            self.duplicate_of[v as usize] = v;
-        }
+        self.link_by_edges(4);
         Ok([a, b, c])
     }
 
-    /// Links the given triangles to each other across their shared edges.
-    fn link_by_edges(&mut self, ts: &[u32]) {
-        let mut open: HashMap<(u32, u32), (u32, usize)> = HashMap::new();
-        for &t in ts {
-            let v = self.tri[t as usize];
-            for k in 0..3 {
-                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-                if let Some((u, l)) = open.remove(&(b, a)) {
-                    self.adj[t as usize][k] = u;
-                    self.adj[u as usize][l] = t;
-                } else {
-                    open.insert((a, b), (t, k));
+    /// Links the first `count` triangles to each other across their shared edges.
+    fn link_by_edges(&mut self, count: usize) {
+        for t in 0..count {
+            for u in 0..count {
+                let (v, w) = (self.tris[t].v, self.tris[u].v);
+                for (k, l) in (0..3).flat_map(|k| (0..3).map(move |l| (k, l))) {
+                    if v[(k + 1) % 3] == w[(l + 2) % 3] && v[(k + 2) % 3] == w[(l + 1) % 3] {
+                        self.tris[t].n[k] = u as u32;
+                    }
                 }
             }
         }
     }
 
+    /// A triangle with vertices `v` and no neighbours yet, in the last freed slot if any.
     fn new_triangle(&mut self, v: [u32; 3]) -> u32 {
+        let triangle = Triangle { v, n: [NONE; 3] };
         if let Some(t) = self.free.pop() {
-            self.tri[t as usize] = v;
-            self.adj[t as usize] = [NONE; 3];
-            self.alive[t as usize] = true;
-            self.mark[t as usize] = 0;
+            self.tris[t as usize] = triangle;
             t
         } else {
-            self.tri.push(v);
-            self.adj.push([NONE; 3]);
-            self.alive.push(true);
+            self.tris.push(triangle);
             self.mark.push(0);
-            (self.tri.len() - 1) as u32
+            (self.tris.len() - 1) as u32
         }
     }
 
     fn point(&self, v: u32) -> &[f64; 2] {
-        &self.points[v as usize]
+        &self.coords[v as usize]
     }
 
-    /// Inserts point `i` (not a copy of an inserted point).
-    fn insert(&mut self, i: u32) -> Result<()> {
-        let start = self.locate(i);
-        if !self.in_conflict(start, i) {
-            return Err(Error::internal(format!(
-                "2D Delaunay: point {i} is not in conflict with the triangle that contains it"
-            )));
-        }
-        self.grow_cavity(start, i);
-        self.fill_cavity(i);
-        self.duplicate_of[i as usize] = i;
-        Ok(())
+    /// Inserts vertex `v`.
+    fn insert(&mut self, v: u32) {
+        let start = self.locate(v);
+        self.grow_cavity(start, v);
+        self.fill_cavity(v);
     }
 
-    /// A triangle containing point `i` (closed), or an infinite triangle whose outside
-    /// contains it strictly, by a stochastic visibility walk from the last created triangle.
+    /// A triangle containing vertex `i`'s point (closed), or an infinite triangle whose
+    /// outside contains it strictly, by a stochastic visibility walk from the last created
+    /// triangle. Either is in conflict with the point: a point of a closed triangle other
+    /// than its vertices is strictly inside its circumcircle.
     fn locate(&mut self, i: u32) -> u32 {
         let p = *self.point(i);
         let mut t = self.hint;
-        if t as usize >= self.tri.len() || !self.alive[t as usize] {
-            t = (0..self.tri.len() as u32)
-                .find(|&t| self.alive[t as usize])
+        if t as usize >= self.tris.len() || self.tris[t as usize].v == FREED {
+            t = (0..self.tris.len() as u32)
+                .find(|&t| self.tris[t as usize].v != FREED)
                 .unwrap_or(0);
         }
+        // The triangle the walk came from: the point is on the inner side of the shared edge.
+        let mut came_from = NONE;
         loop {
-            let v = self.tri[t as usize];
-            if v.contains(&INFINITE) {
-                let k = v.iter().position(|&x| x == INFINITE).unwrap_or(0);
+            let Triangle { v, n } = self.tris[t as usize];
+            let k = if let Some(k) = v.iter().position(|&x| x == INFINITE) {
                 // Step back into the hull when the point is not outside this edge.
-                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-                if orient2d(self.point(a), self.point(b), &p) == Sign::Positive {
+                if self.edge_orientation(v, k, &p) == Sign::Positive {
                     return t;
                 }
-                t = self.adj[t as usize][k];
-                continue;
-            }
-            self.rng ^= self.rng << 13;
-            self.rng ^= self.rng >> 17;
-            self.rng ^= self.rng << 5;
-            let s = (self.rng % 3) as usize;
-            let next = (0..3).map(|j| (s + j) % 3).find(|&k| {
-                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-                orient2d(self.point(a), self.point(b), &p) == Sign::Negative
-            });
-            match next {
-                Some(k) => t = self.adj[t as usize][k],
-                None => return t,
-            }
+                k
+            } else {
+                let s = self.next_random() % 3;
+                let exit = (0..3).map(|j| (s + j) % 3).find(|&k| {
+                    n[k] != came_from && self.edge_orientation(v, k, &p) == Sign::Negative
+                });
+                match exit {
+                    Some(k) => k,
+                    None => return t,
+                }
+            };
+            came_from = t;
+            t = n[k];
         }
     }
 
-    /// Whether point `i` is in conflict with triangle `t` (see the module documentation).
-    fn in_conflict(&self, t: u32, i: u32) -> bool {
-        conflict(self.tri[t as usize], |v| self.point(v), self.point(i))
+    /// The orientation of the edge of vertices `v` opposite slot `k` and point `p`.
+    fn edge_orientation(&self, v: [u32; 3], k: usize, p: &[f64; 2]) -> Sign {
+        let (a, b) = (self.point(v[(k + 1) % 3]), self.point(v[(k + 2) % 3]));
+        self.filter.orient2d(a, b, p)
     }
 
-    /// The triangles in conflict with point `i`, a connected set grown from `start`.
+    /// The next number of the walk's xorshift generator.
+    fn next_random(&mut self) -> usize {
+        self.rng ^= self.rng << 13;
+        self.rng ^= self.rng >> 17;
+        self.rng ^= self.rng << 5;
+        self.rng as usize
+    }
+
+    /// Whether point `p` is in conflict with triangle `t` (see the module documentation).
+    fn in_conflict(&self, t: u32, p: &[f64; 2]) -> bool {
+        conflict_by(&self.filter, self.tris[t as usize].v, |v| self.point(v), p)
+    }
+
+    /// The triangles in conflict with vertex `i`, a connected set grown from `start` (in
+    /// conflict), depth first.
     fn grow_cavity(&mut self, start: u32, i: u32) {
+        let p = *self.point(i);
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 {
             self.mark.iter_mut().for_each(|m| *m = 0);
@@ -317,9 +348,8 @@ impl<'a> Delaunay2d<'a> {
         self.mark[start as usize] = self.stamp;
         while let Some(t) = self.stack.pop() {
             self.cavity.push(t);
-            for k in 0..3 {
-                let n = self.adj[t as usize][k];
-                if self.mark[n as usize] != self.stamp && self.in_conflict(n, i) {
+            for n in self.tris[t as usize].n {
+                if self.mark[n as usize] != self.stamp && self.in_conflict(n, &p) {
                     self.mark[n as usize] = self.stamp;
                     self.stack.push(n);
                 }
@@ -327,117 +357,155 @@ impl<'a> Delaunay2d<'a> {
         }
     }
 
-    /// Replaces the cavity by the fan from point `i` over its boundary.
+    /// Replaces the cavity by the fan from vertex `i` over its boundary: the new triangle of
+    /// each boundary edge `(a, b)`, in cavity order, is `[a, b, i]`; it replaces the outer
+    /// triangle's link to the cavity and, on the cavity triangle, the link to the outer one,
+    /// so that the fan can then be closed by turning around `b` inside the cavity.
     fn fill_cavity(&mut self, i: u32) {
-        self.starts.clear();
         self.created.clear();
         let cavity = std::mem::take(&mut self.cavity);
         for &t in &cavity {
             for k in 0..3 {
-                let n = self.adj[t as usize][k];
-                if self.mark[n as usize] == self.stamp {
+                let Triangle { v, n } = self.tris[t as usize];
+                if self.mark[n[k] as usize] == self.stamp {
                     continue;
                 }
-                let v = self.tri[t as usize];
-                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-                let new = self.new_triangle([a, b, i]);
-                self.adj[new as usize][2] = n;
-                let back = self.adj[n as usize]
-                    .iter()
-                    .position(|&x| x == t)
-                    .unwrap_or(0);
-                self.adj[n as usize][back] = new;
-                self.starts.insert(a, new);
-                self.created.push(new);
+                let new = self.new_triangle([v[(k + 1) % 3], v[(k + 2) % 3], i]);
+                self.tris[new as usize].n[2] = n[k];
+                let outer = &mut self.tris[n[k] as usize].n;
+                let back = outer.iter().position(|&x| x == t).unwrap_or(0);
+                outer[back] = new;
+                self.tris[t as usize].n[k] = new;
+                self.created.push((new, t, k));
             }
         }
-        for &new in &self.created {
-            let b = self.tri[new as usize][1];
-            let next = self.starts[&b];
-            self.adj[new as usize][0] = next;
-            self.adj[next as usize][1] = new;
+        for c in 0..self.created.len() {
+            let (new, t, k) = self.created[c];
+            let next = self.next_on_boundary(t, k);
+            self.tris[new as usize].n[0] = next;
+            self.tris[next as usize].n[1] = new;
         }
         for &t in &cavity {
-            self.alive[t as usize] = false;
+            self.tris[t as usize].v = FREED;
             self.free.push(t);
         }
-        self.hint = self.created.last().copied().unwrap_or(self.hint);
+        self.hint = self.created.last().map_or(self.hint, |c| c.0);
         self.cavity = cavity;
     }
 
+    /// The new triangle of the boundary edge that follows the boundary edge of slot `k` of
+    /// cavity triangle `t`, `(a, b)`, counter-clockwise around the cavity: the one from `b`,
+    /// found by turning around `b` through the cavity triangles (the boundary links of cavity
+    /// triangles are already the new triangles, which are not marked).
+    fn next_on_boundary(&self, mut t: u32, k: usize) -> u32 {
+        let b = self.tris[t as usize].v[(k + 2) % 3];
+        // The edge from `b` in `t` is the one opposite the slot after `k`'s.
+        let mut slot = (k + 1) % 3;
+        loop {
+            let n = self.tris[t as usize].n[slot];
+            if self.mark[n as usize] != self.stamp {
+                return n;
+            }
+            t = n;
+            let at = self.tris[t as usize]
+                .v
+                .iter()
+                .position(|&x| x == b)
+                .unwrap_or(0);
+            slot = (at + 2) % 3;
+        }
+    }
+
     /// Checks the invariants of the module documentation; the error names the first
-    /// triangle that breaks one.
+    /// triangle that breaks one (by storage slot; vertices by input index).
     pub fn validate(&self) -> std::result::Result<(), String> {
-        for t in 0..self.tri.len() {
-            if !self.alive[t] {
-                continue;
-            }
-            let v = self.tri[t];
-            if v[0] == v[1] || v[1] == v[2] || v[0] == v[2] {
-                return Err(format!("triangle {t} {v:?} repeats a vertex"));
-            }
-            for k in 0..3 {
-                let n = self.adj[t][k] as usize;
-                if n >= self.tri.len() || !self.alive[n] {
-                    return Err(format!(
-                        "triangle {t}: neighbour {k} is not a live triangle"
-                    ));
-                }
-                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-                let w = self.tri[n];
-                let Some(l) = (0..3).find(|&l| w[(l + 1) % 3] == b && w[(l + 2) % 3] == a) else {
-                    return Err(format!(
-                        "triangles {t} and {n} do not share edge ({a}, {b})"
-                    ));
-                };
-                if self.adj[n][l] as usize != t {
-                    return Err(format!(
-                        "adjacency of triangles {t} and {n} is not symmetric"
-                    ));
-                }
-                if !v.contains(&INFINITE) && !w.contains(&INFINITE) {
-                    let [p, q, r] = v.map(|x| self.point(x));
-                    if incircle_sos(p, q, r, self.point(w[l])) == Sign::Positive {
-                        return Err(format!(
-                            "edge ({a}, {b}) of triangle {t} is not locally Delaunay"
-                        ));
-                    }
-                }
-            }
-            if let Some(k) = v.iter().position(|&x| x == INFINITE) {
-                // The next hull edge (b, c) turns clockwise from (a, b), or goes straight.
-                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-                let n = self.tri[self.adj[t][(k + 1) % 3] as usize];
-                let kn = n.iter().position(|&x| x == INFINITE);
-                let Some(kn) = kn.filter(|&kn| n[(kn + 1) % 3] == b) else {
-                    return Err(format!(
-                        "hull edge ({a}, {b}) is not followed by a hull edge"
-                    ));
-                };
-                let c = n[(kn + 2) % 3];
-                if orient2d(self.point(a), self.point(b), self.point(c)) == Sign::Positive {
-                    return Err(format!("hull is not convex at vertex {b}"));
-                }
-            }
-            if !v.contains(&INFINITE) {
-                let [p, q, r] = v.map(|x| self.point(x));
-                if orient2d(p, q, r) != Sign::Positive {
-                    return Err(format!("triangle {t} {v:?} is not counter-clockwise"));
-                }
+        for (t, tri) in self.tris.iter().enumerate() {
+            if tri.v != FREED {
+                self.validate_triangle(t)?;
             }
         }
-        let mut used = vec![false; self.points.len()];
-        for t in (0..self.tri.len()).filter(|&t| self.alive[t]) {
-            for &x in &self.tri[t] {
+        let mut used = vec![false; self.coords.len()];
+        for tri in self.tris.iter().filter(|t| t.v != FREED) {
+            for &x in &tri.v {
                 if x != INFINITE {
                     used[x as usize] = true;
                 }
             }
         }
-        if let Some(i) =
-            (0..self.points.len()).find(|&i| self.duplicate_of[i] as usize == i && !used[i])
+        if let Some(v) = used.iter().position(|&u| !u) {
+            return Err(format!("vertex {} is in no triangle", self.label[v]));
+        }
+        if let Some(i) = (0..self.points.len()).find(|&i| {
+            let d = self.duplicate_of[i];
+            d != NONE && self.points[d as usize] != self.points[i]
+        }) {
+            return Err(format!("point {i} is merged onto a different point"));
+        }
+        if self
+            .label
+            .iter()
+            .any(|&i| self.duplicate_of[i as usize] != i)
         {
-            return Err(format!("vertex {i} is in no triangle"));
+            return Err("a vertex is merged onto another point".to_string());
+        }
+        Ok(())
+    }
+
+    /// Checks the invariants of live triangle `t`.
+    fn validate_triangle(&self, t: usize) -> std::result::Result<(), String> {
+        let v = self.tris[t].v;
+        let name = self.labeled(v);
+        if v[0] == v[1] || v[1] == v[2] || v[0] == v[2] {
+            return Err(format!("triangle {t} {name:?} repeats a vertex"));
+        }
+        for k in 0..3 {
+            let n = self.tris[t].n[k] as usize;
+            if n >= self.tris.len() || self.tris[n].v == FREED {
+                return Err(format!(
+                    "triangle {t}: neighbour {k} is not a live triangle"
+                ));
+            }
+            let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            let w = self.tris[n].v;
+            let Some(l) = (0..3).find(|&l| w[(l + 1) % 3] == b && w[(l + 2) % 3] == a) else {
+                return Err(format!("triangles {t} and {n} do not share an edge"));
+            };
+            if self.tris[n].n[l] as usize != t {
+                return Err(format!(
+                    "adjacency of triangles {t} and {n} is not symmetric"
+                ));
+            }
+            if !v.contains(&INFINITE) && !w.contains(&INFINITE) {
+                let [p, q, r] = v.map(|x| self.point(x));
+                if incircle_sos(p, q, r, self.point(w[l])) == Sign::Positive {
+                    return Err(format!(
+                        "edge {k} of triangle {t} {name:?} is not locally Delaunay"
+                    ));
+                }
+            }
+        }
+        if let Some(k) = v.iter().position(|&x| x == INFINITE) {
+            // The next hull edge (b, c) turns clockwise from (a, b), or goes straight.
+            let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            let n = self.tris[self.tris[t].n[(k + 1) % 3] as usize].v;
+            let kn = n.iter().position(|&x| x == INFINITE);
+            let Some(kn) = kn.filter(|&kn| n[(kn + 1) % 3] == b) else {
+                return Err(format!(
+                    "hull edge {k} of triangle {t} {name:?} is not followed by a hull edge"
+                ));
+            };
+            let c = n[(kn + 2) % 3];
+            if orient2d(self.point(a), self.point(b), self.point(c)) == Sign::Positive {
+                return Err(format!(
+                    "hull is not convex at vertex {}",
+                    self.label[b as usize]
+                ));
+            }
+        } else {
+            let [p, q, r] = v.map(|x| self.point(x));
+            if orient2d(p, q, r) != Sign::Positive {
+                return Err(format!("triangle {t} {name:?} is not counter-clockwise"));
+            }
         }
         Ok(())
     }
@@ -445,19 +513,44 @@ impl<'a> Delaunay2d<'a> {
 
 /// For each point, the first point (in index order) with the same coordinates.
 pub fn first_duplicates(points: &[[f64; 2]]) -> Vec<u32> {
-    let key = |p: &[f64; 2]| p.map(|x| if x == 0.0 { 0u64 } else { x.to_bits() });
-    let mut seen: HashMap<[u64; 2], u32> = HashMap::with_capacity(points.len());
-    points
-        .iter()
-        .enumerate()
-        .map(|(i, p)| *seen.entry(key(p)).or_insert(i as u32))
-        .collect()
+    let (lo, hi) = bounding_box(points);
+    first_along(points, &hilbert_sorted(points, lo, hi)).0
 }
 
-/// Indices of `points` sorted along a Hilbert curve over their bounding box (ties by index),
-/// so that consecutive insertions are close and walks are short.
-fn hilbert_order(points: &[[f64; 2]]) -> Vec<u32> {
-    const BITS: u32 = 16;
+/// [`first_duplicates`] from `sorted`, the points by Hilbert key (see [`hilbert_sorted`]),
+/// and the points that are their own first, in that order: identical points have the same
+/// key, so only runs of equal keys need comparing.
+fn first_along(points: &[[f64; 2]], sorted: &[u64]) -> (Vec<u32>, Vec<u32>) {
+    let coordinates =
+        |i: u32| points[i as usize].map(|x| if x == 0.0 { 0u64 } else { x.to_bits() });
+    let mut first: Vec<u32> = (0..points.len() as u32).collect();
+    let mut unique = Vec::with_capacity(points.len());
+    let mut run = Vec::new();
+    for same_key in sorted.chunk_by(|x, y| x >> 32 == y >> 32) {
+        if let [single] = same_key {
+            unique.push(*single as u32);
+            continue;
+        }
+        run.clear();
+        run.extend(same_key.iter().map(|&x| (coordinates(x as u32), x as u32)));
+        run.sort_unstable();
+        for same_point in run.chunk_by(|x, y| x.0 == y.0) {
+            for &(_, i) in same_point {
+                first[i as usize] = same_point[0].1;
+            }
+        }
+        unique.extend(
+            same_key
+                .iter()
+                .map(|&x| x as u32)
+                .filter(|&i| first[i as usize] == i),
+        );
+    }
+    (first, unique)
+}
+
+/// The smallest box `[lo, hi]` containing `points`.
+fn bounding_box(points: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for p in points {
         for k in 0..2 {
@@ -465,34 +558,75 @@ fn hilbert_order(points: &[[f64; 2]]) -> Vec<u32> {
             hi[k] = hi[k].max(p[k]);
         }
     }
+    (lo, hi)
+}
+
+/// The points as `key << 32 | index`, `key` their distance along the Hilbert curve of
+/// [`HILBERT_BITS`] bits per axis over the square of side the longest side of their bounding
+/// box `lo`, `hi`, sorted (by key, then index): the insertion order, consecutive points close
+/// so that walks are short.
+fn hilbert_sorted(points: &[[f64; 2]], lo: [f64; 2], hi: [f64; 2]) -> Vec<u64> {
     let side = (hi[0] - lo[0]).max(hi[1] - lo[1]);
     let scale = if side > 0.0 {
-        ((1u32 << BITS) - 1) as f64 / side
+        ((1u32 << HILBERT_BITS) - 1) as f64 / side
     } else {
         0.0
     };
-    let mut keyed: Vec<(u64, u32)> = points
+    let keyed: Vec<u64> = points
         .iter()
         .enumerate()
         .map(|(i, p)| {
             let x = ((p[0] - lo[0]) * scale) as u32;
             let y = ((p[1] - lo[1]) * scale) as u32;
-            (hilbert_key(x, y, BITS), i as u32)
+            u64::from(hilbert_key(x, y, HILBERT_BITS)) << 32 | i as u64
         })
         .collect();
-    keyed.sort_unstable();
-    keyed.into_iter().map(|(_, i)| i).collect()
+    radix_sort_by_high_half(keyed)
 }
 
-/// Distance along the Hilbert curve of order `bits` of the cell `(x, y)`.
-fn hilbert_key(mut x: u32, mut y: u32, bits: u32) -> u64 {
+/// `items` sorted by their high 32 bits, stably: a least-significant-digit radix sort in
+/// passes of 8 bits, skipping the digits every item shares.
+fn radix_sort_by_high_half(mut items: Vec<u64>) -> Vec<u64> {
+    let mut counts = [[0usize; 256]; 4];
+    for &x in &items {
+        for (d, count) in counts.iter_mut().enumerate() {
+            count[digit(x, d)] += 1;
+        }
+    }
+    let mut out = vec![0u64; items.len()];
+    for (d, count) in counts.iter().enumerate() {
+        if count.contains(&items.len()) {
+            continue;
+        }
+        let mut start = [0usize; 256];
+        for b in 1..256 {
+            start[b] = start[b - 1] + count[b - 1];
+        }
+        for &x in &items {
+            let b = digit(x, d);
+            out[start[b]] = x;
+            start[b] += 1;
+        }
+        std::mem::swap(&mut items, &mut out);
+    }
+    items
+}
+
+/// Digit `d` (of 8 bits, from the least significant) of the high half of `x`.
+#[inline]
+fn digit(x: u64, d: usize) -> usize {
+    (x >> (32 + 8 * d)) as usize & 0xff
+}
+
+/// Distance along the Hilbert curve of order `bits` (at most 16) of the cell `(x, y)`.
+fn hilbert_key(mut x: u32, mut y: u32, bits: u32) -> u32 {
     let last = (1u32 << bits) - 1;
-    let mut d = 0u64;
+    let mut d = 0u32;
     let mut s = 1u32 << (bits - 1);
     while s > 0 {
         let rx = u32::from(x & s > 0);
         let ry = u32::from(y & s > 0);
-        d += u64::from(s) * u64::from(s) * u64::from((3 * rx) ^ ry);
+        d += s * s * ((3 * rx) ^ ry);
         if ry == 0 {
             if rx == 1 {
                 x = last - x;
@@ -510,15 +644,26 @@ fn hilbert_key(mut x: u32, mut y: u32, bits: u32) -> u64 {
 /// ties broken by the symbolic perturbation; for an infinite triangle, strictly beyond its
 /// hull edge or on the edge's open segment.
 pub(super) fn conflict<'a>(v: [u32; 3], at: impl Fn(u32) -> &'a [f64; 2], p: &[f64; 2]) -> bool {
+    conflict_by(&Adaptive, v, at, p)
+}
+
+/// [`conflict`] decided by `predicates`.
+#[inline]
+fn conflict_by<'a>(
+    predicates: &impl Predicates2d,
+    v: [u32; 3],
+    at: impl Fn(u32) -> &'a [f64; 2],
+    p: &[f64; 2],
+) -> bool {
     match v.iter().position(|&x| x == INFINITE) {
         None => {
             let [a, b, c] = v.map(&at);
-            incircle_sos(a, b, c, p) == Sign::Positive
+            predicates.incircle_sos(a, b, c, p) == Sign::Positive
         }
         Some(k) => {
             let a = at(v[(k + 1) % 3]);
             let b = at(v[(k + 2) % 3]);
-            match orient2d(a, b, p) {
+            match predicates.orient2d(a, b, p) {
                 Sign::Positive => true,
                 Sign::Zero => dot_sign(a, b, p) == Sign::Negative,
                 Sign::Negative => false,
