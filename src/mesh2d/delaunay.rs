@@ -273,8 +273,7 @@ impl<'a> Delaunay2d<'a> {
     /// Inserts vertex `v`.
     fn insert(&mut self, v: u32) {
         let start = self.locate(v);
-        self.grow_cavity(start, v);
-        self.fill_cavity(v);
+        self.replace_cavity(start, v);
     }
 
     /// A triangle containing vertex `i`'s point (closed), or an infinite triangle whose
@@ -333,9 +332,13 @@ impl<'a> Delaunay2d<'a> {
         conflict_by(&self.filter, self.tris[t as usize].v, |v| self.point(v), p)
     }
 
-    /// The triangles in conflict with vertex `i`, a connected set grown from `start` (in
-    /// conflict), depth first.
-    fn grow_cavity(&mut self, start: u32, i: u32) {
+    /// Replaces the cavity of vertex `i`, the triangles in conflict with it (a connected set
+    /// grown from `start`, in conflict, depth first), by the fan from `i` over its boundary.
+    /// Once a cavity triangle's neighbours are tested its boundary edges are known: the new
+    /// triangle of each, `(a, b)`, is `[a, b, i]`; it replaces the outer triangle's link to
+    /// the cavity and, on the cavity triangle, the link to the outer one, so that the fan can
+    /// then be closed by turning around `b` inside the cavity.
+    fn replace_cavity(&mut self, start: u32, i: u32) {
         let p = *self.point(i);
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 {
@@ -343,40 +346,23 @@ impl<'a> Delaunay2d<'a> {
             self.stamp = 1;
         }
         self.cavity.clear();
+        self.created.clear();
         self.stack.clear();
         self.stack.push(start);
         self.mark[start as usize] = self.stamp;
         while let Some(t) = self.stack.pop() {
             self.cavity.push(t);
-            for n in self.tris[t as usize].n {
-                if self.mark[n as usize] != self.stamp && self.in_conflict(n, &p) {
-                    self.mark[n as usize] = self.stamp;
-                    self.stack.push(n);
-                }
-            }
-        }
-    }
-
-    /// Replaces the cavity by the fan from vertex `i` over its boundary: the new triangle of
-    /// each boundary edge `(a, b)`, in cavity order, is `[a, b, i]`; it replaces the outer
-    /// triangle's link to the cavity and, on the cavity triangle, the link to the outer one,
-    /// so that the fan can then be closed by turning around `b` inside the cavity.
-    fn fill_cavity(&mut self, i: u32) {
-        self.created.clear();
-        let cavity = std::mem::take(&mut self.cavity);
-        for &t in &cavity {
             for k in 0..3 {
-                let Triangle { v, n } = self.tris[t as usize];
-                if self.mark[n[k] as usize] == self.stamp {
+                let n = self.tris[t as usize].n[k];
+                if self.mark[n as usize] == self.stamp {
                     continue;
                 }
-                let new = self.new_triangle([v[(k + 1) % 3], v[(k + 2) % 3], i]);
-                self.tris[new as usize].n[2] = n[k];
-                let outer = &mut self.tris[n[k] as usize].n;
-                let back = outer.iter().position(|&x| x == t).unwrap_or(0);
-                outer[back] = new;
-                self.tris[t as usize].n[k] = new;
-                self.created.push((new, t, k));
+                if self.in_conflict(n, &p) {
+                    self.mark[n as usize] = self.stamp;
+                    self.stack.push(n);
+                } else {
+                    self.open_fan(t, k, i);
+                }
             }
         }
         for c in 0..self.created.len() {
@@ -385,12 +371,24 @@ impl<'a> Delaunay2d<'a> {
             self.tris[new as usize].n[0] = next;
             self.tris[next as usize].n[1] = new;
         }
-        for &t in &cavity {
+        for &t in &self.cavity {
             self.tris[t as usize].v = FREED;
             self.free.push(t);
         }
         self.hint = self.created.last().map_or(self.hint, |c| c.0);
-        self.cavity = cavity;
+    }
+
+    /// The new triangle `[a, b, i]` of the boundary edge `(a, b)` of slot `k` of cavity
+    /// triangle `t`, linked to the outer triangle across it.
+    fn open_fan(&mut self, t: u32, k: usize, i: u32) {
+        let Triangle { v, n } = self.tris[t as usize];
+        let new = self.new_triangle([v[(k + 1) % 3], v[(k + 2) % 3], i]);
+        self.tris[new as usize].n[2] = n[k];
+        let outer = &mut self.tris[n[k] as usize].n;
+        let back = outer.iter().position(|&x| x == t).unwrap_or(0);
+        outer[back] = new;
+        self.tris[t as usize].n[k] = new;
+        self.created.push((new, t, k));
     }
 
     /// The new triangle of the boundary edge that follows the boundary edge of slot `k` of
@@ -578,7 +576,7 @@ fn hilbert_sorted(points: &[[f64; 2]], lo: [f64; 2], hi: [f64; 2]) -> Vec<u64> {
         .map(|(i, p)| {
             let x = ((p[0] - lo[0]) * scale) as u32;
             let y = ((p[1] - lo[1]) * scale) as u32;
-            u64::from(hilbert_key(x, y, HILBERT_BITS)) << 32 | i as u64
+            u64::from(hilbert_key(x, y)) << 32 | i as u64
         })
         .collect();
     radix_sort_by_high_half(keyed)
@@ -618,25 +616,53 @@ fn digit(x: u64, d: usize) -> usize {
     (x >> (32 + 8 * d)) as usize & 0xff
 }
 
-/// Distance along the Hilbert curve of order `bits` (at most 16) of the cell `(x, y)`.
-fn hilbert_key(mut x: u32, mut y: u32, bits: u32) -> u32 {
-    let last = (1u32 << bits) - 1;
+/// Distance along the Hilbert curve of order [`HILBERT_BITS`] of the cell `(x, y)` (each
+/// below `2^HILBERT_BITS`), four levels at a time by [`HILBERT_STEPS`].
+fn hilbert_key(x: u32, y: u32) -> u32 {
     let mut d = 0u32;
-    let mut s = 1u32 << (bits - 1);
-    while s > 0 {
-        let rx = u32::from(x & s > 0);
-        let ry = u32::from(y & s > 0);
-        d += s * s * ((3 * rx) ^ ry);
-        if ry == 0 {
-            if rx == 1 {
-                x = last - x;
-                y = last - y;
-            }
-            std::mem::swap(&mut x, &mut y);
-        }
-        s >>= 1;
+    let mut state = 0usize;
+    for shift in (0..HILBERT_BITS).step_by(4).rev() {
+        let cell = ((x >> shift) as usize & 0xf) << 4 | ((y >> shift) as usize & 0xf);
+        let step = HILBERT_STEPS[state << 8 | cell];
+        d = d << 8 | u32::from(step & 0xff);
+        state = usize::from(step >> 8);
     }
     d
+}
+
+/// Four levels of the Hilbert curve at once: entry `state << 8 | x << 4 | y`, for 4 bits of
+/// `x` and of `y` (the next levels, most significant first) in the frame `state`, holds the
+/// 4 base-4 digits of the distance (low byte) and the frame of the levels after (above).
+const HILBERT_STEPS: [u16; 1024] = hilbert_steps();
+
+/// The table [`HILBERT_STEPS`]. The frame of a level is the transformation of the cell
+/// coordinates accumulated by the levels before it: bit 0 swaps `x` and `y`, bit 1
+/// complements both. At each level, with `rx` and `ry` the transformed bits, the digit is
+/// `3 rx ^ ry`; in the lower half (`ry = 0`) the curve turns: `x` and `y` are swapped, and
+/// complemented first in the lower right quadrant (`rx = 1`).
+const fn hilbert_steps() -> [u16; 1024] {
+    let mut table = [0u16; 1024];
+    let mut entry = 0;
+    while entry < 1024 {
+        let mut frame = entry >> 8;
+        let mut digits = 0;
+        let mut level = 4;
+        while level > 0 {
+            level -= 1;
+            let bx = (entry >> (4 + level)) & 1;
+            let by = (entry >> level) & 1;
+            let (swap, complement) = (frame & 1, frame >> 1);
+            let rx = if swap == 1 { by } else { bx } ^ complement;
+            let ry = if swap == 1 { bx } else { by } ^ complement;
+            digits = digits << 2 | ((3 * rx) ^ ry);
+            if ry == 0 {
+                frame ^= 1 | (rx << 1);
+            }
+        }
+        table[entry] = (frame << 8 | digits) as u16;
+        entry += 1;
+    }
+    table
 }
 
 /// Whether `p` is in conflict with the counter-clockwise triangle `v` (one vertex may be
@@ -745,6 +771,40 @@ mod tests {
     fn pinned(name: &str, points: &[[f64; 2]], expected: [u64; 3]) {
         let t = Delaunay2d::new(points).expect("triangulation");
         assert_eq!(digests(&t), expected, "{name}");
+    }
+
+    /// The distance along the Hilbert curve of order 16 of the cell `(x, y)`, one level at a
+    /// time (Wikipedia's `xy2d`).
+    fn hilbert_key_by_levels(mut x: u32, mut y: u32) -> u32 {
+        let last = (1u32 << 16) - 1;
+        let mut d = 0;
+        let mut s = 1u32 << 15;
+        while s > 0 {
+            let rx = u32::from(x & s > 0);
+            let ry = u32::from(y & s > 0);
+            d += s * s * ((3 * rx) ^ ry);
+            if ry == 0 {
+                if rx == 1 {
+                    x = last - x;
+                    y = last - y;
+                }
+                std::mem::swap(&mut x, &mut y);
+            }
+            s >>= 1;
+        }
+        d
+    }
+
+    #[test]
+    fn hilbert_keys_four_levels_at_a_time() {
+        let cells = random(20000, 3)
+            .into_iter()
+            .map(|p| p.map(|c| (c * 65536.0) as u32));
+        let corners = [0, 1, 15, 16, 255, 256, 65534, 65535];
+        let corners = corners.iter().flat_map(|&x| corners.map(|y| [x, y]));
+        for [x, y] in cells.chain(corners) {
+            assert_eq!(hilbert_key(x, y), hilbert_key_by_levels(x, y), "({x}, {y})");
+        }
     }
 
     #[test]

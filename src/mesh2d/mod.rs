@@ -378,9 +378,10 @@ fn mesh_of(points: &[[f64; 2]], dt: &Delaunay2d, mut dims: Vec<i8>, edges: Vec<u
             dims[i] = DIMENSION_UNKNOWN;
         }
     }
-    let triangles: Vec<u32> = dt.triangles().into_iter().flatten().collect();
+    let triangles = dt.triangles().into_flattened();
+    let vertices: Vec<[f64; 3]> = points.iter().map(|p| [p[0], p[1], 0.0]).collect();
     Mesh {
-        vertices: points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect(),
+        vertices: vertices.into_flattened(),
         vertex_dimensions: dims,
         triangle_labels: vec![1; triangles.len() / 3],
         triangles,
