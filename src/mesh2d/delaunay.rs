@@ -78,9 +78,13 @@ pub struct Delaunay2d<'a> {
     stamp: u32,
     cavity: Vec<u32>,
     stack: Vec<u32>,
-    /// The new triangles of the current insertion, each with the cavity triangle and slot of
-    /// its boundary edge.
-    created: Vec<(u32, u32, usize)>,
+    /// The boundary edges of the current cavity (cavity triangle, slot) and the slots of
+    /// their new triangles.
+    boundary: Vec<(u32, usize)>,
+    created: Vec<u32>,
+    /// `fan[a]`: the new triangle from vertex `a` of the current fan; the infinite vertex's
+    /// is last.
+    fan: Vec<u32>,
 }
 
 impl<'a> Delaunay2d<'a> {
@@ -114,8 +118,11 @@ impl<'a> Delaunay2d<'a> {
             stamp: 0,
             cavity: Vec::new(),
             stack: Vec::new(),
+            boundary: Vec::new(),
             created: Vec::new(),
+            fan: Vec::new(),
         };
+        t.fan = vec![NONE; t.coords.len() + 1];
         let seed = t.seed()?;
         for v in 0..t.coords.len() as u32 {
             if !seed.contains(&v) {
@@ -327,91 +334,114 @@ impl<'a> Delaunay2d<'a> {
         self.rng as usize
     }
 
-    /// Whether point `p` is in conflict with triangle `t` (see the module documentation).
-    fn in_conflict(&self, t: u32, p: &[f64; 2]) -> bool {
-        conflict_by(&self.filter, self.tris[t as usize].v, |v| self.point(v), p)
-    }
-
-    /// Replaces the cavity of vertex `i`, the triangles in conflict with it (a connected set
-    /// grown from `start`, in conflict, depth first), by the fan from `i` over its boundary.
-    /// Once a cavity triangle's neighbours are tested its boundary edges are known: the new
-    /// triangle of each, `(a, b)`, is `[a, b, i]`; it replaces the outer triangle's link to
-    /// the cavity and, on the cavity triangle, the link to the outer one, so that the fan can
-    /// then be closed by turning around `b` inside the cavity.
+    /// Replaces the cavity of vertex `i` (the triangles in conflict with it, a connected set
+    /// grown from `start`, which is in conflict) by the fan from `i` over its boundary.
     fn replace_cavity(&mut self, start: u32, i: u32) {
-        let p = *self.point(i);
         self.stamp = self.stamp.wrapping_add(1);
         if self.stamp == 0 {
             self.mark.iter_mut().for_each(|m| *m = 0);
             self.stamp = 1;
         }
-        self.cavity.clear();
-        self.created.clear();
-        self.stack.clear();
-        self.stack.push(start);
-        self.mark[start as usize] = self.stamp;
-        while let Some(t) = self.stack.pop() {
-            self.cavity.push(t);
-            for k in 0..3 {
-                let n = self.tris[t as usize].n[k];
-                if self.mark[n as usize] == self.stamp {
+        self.search_cavity(start, i);
+        self.allocate_fan();
+        self.build_fan(i);
+    }
+
+    /// The cavity of vertex `i` grown depth first from `start` and marked, in `cavity`, and
+    /// its boundary edges (cavity triangle, slot) in `boundary`: each cavity triangle's, once
+    /// its neighbours are tested, in slot order.
+    fn search_cavity(&mut self, start: u32, i: u32) {
+        let Self {
+            coords,
+            tris,
+            mark,
+            stamp,
+            filter,
+            cavity,
+            stack,
+            boundary,
+            ..
+        } = self;
+        let (tris, mark, stamp) = (&tris[..], &mut mark[..], *stamp);
+        let p = coords[i as usize];
+        cavity.clear();
+        boundary.clear();
+        stack.push(start);
+        mark[start as usize] = stamp;
+        while let Some(t) = stack.pop() {
+            cavity.push(t);
+            for (k, n) in tris[t as usize].n.into_iter().enumerate() {
+                if mark[n as usize] == stamp {
                     continue;
                 }
-                if self.in_conflict(n, &p) {
-                    self.mark[n as usize] = self.stamp;
-                    self.stack.push(n);
+                if conflict_by(filter, tris[n as usize].v, |v| &coords[v as usize], &p) {
+                    mark[n as usize] = stamp;
+                    stack.push(n);
                 } else {
-                    self.open_fan(t, k, i);
+                    boundary.push((t, k));
                 }
             }
         }
-        for c in 0..self.created.len() {
-            let (new, t, k) = self.created[c];
-            let next = self.next_on_boundary(t, k);
-            self.tris[new as usize].n[0] = next;
-            self.tris[next as usize].n[1] = new;
-        }
-        for &t in &self.cavity {
-            self.tris[t as usize].v = FREED;
-            self.free.push(t);
-        }
-        self.hint = self.created.last().map_or(self.hint, |c| c.0);
     }
 
-    /// The new triangle `[a, b, i]` of the boundary edge `(a, b)` of slot `k` of cavity
-    /// triangle `t`, linked to the outer triangle across it.
-    fn open_fan(&mut self, t: u32, k: usize, i: u32) {
-        let Triangle { v, n } = self.tris[t as usize];
-        let new = self.new_triangle([v[(k + 1) % 3], v[(k + 2) % 3], i]);
-        self.tris[new as usize].n[2] = n[k];
-        let outer = &mut self.tris[n[k] as usize].n;
-        let back = outer.iter().position(|&x| x == t).unwrap_or(0);
-        outer[back] = new;
-        self.tris[t as usize].n[k] = new;
-        self.created.push((new, t, k));
+    /// A slot for each boundary edge's new triangle, in `created`: freed slots first, last
+    /// freed first, then slots added at the end.
+    fn allocate_fan(&mut self) {
+        let count = self.boundary.len();
+        let reused = count.min(self.free.len());
+        self.created.clear();
+        self.created
+            .extend(self.free.drain(self.free.len() - reused..).rev());
+        let end = self.tris.len();
+        let added = Triangle {
+            v: FREED,
+            n: [NONE; 3],
+        };
+        self.tris.resize(end + count - reused, added);
+        self.mark.resize(end + count - reused, 0);
+        self.created
+            .extend(end as u32..(end + count - reused) as u32);
     }
 
-    /// The new triangle of the boundary edge that follows the boundary edge of slot `k` of
-    /// cavity triangle `t`, `(a, b)`, counter-clockwise around the cavity: the one from `b`,
-    /// found by turning around `b` through the cavity triangles (the boundary links of cavity
-    /// triangles are already the new triangles, which are not marked).
-    fn next_on_boundary(&self, mut t: u32, k: usize) -> u32 {
-        let b = self.tris[t as usize].v[(k + 2) % 3];
-        // The edge from `b` in `t` is the one opposite the slot after `k`'s.
-        let mut slot = (k + 1) % 3;
-        loop {
-            let n = self.tris[t as usize].n[slot];
-            if self.mark[n as usize] != self.stamp {
-                return n;
-            }
-            t = n;
-            let at = self.tris[t as usize]
-                .v
-                .iter()
-                .position(|&x| x == b)
-                .unwrap_or(0);
-            slot = (at + 2) % 3;
+    /// The fan from vertex `i`: the new triangle of each boundary edge `(a, b)` is
+    /// `[a, b, i]`, in the slot `created` gives it, linked to the outer triangle across the
+    /// edge, then to the new triangles from `b` and to `a` (found through `fan`). The
+    /// cavity's slots are freed.
+    fn build_fan(&mut self, i: u32) {
+        let Self {
+            tris,
+            fan,
+            cavity,
+            boundary,
+            created,
+            free,
+            hint,
+            ..
+        } = self;
+        let tris = &mut tris[..];
+        let infinite = fan.len() - 1;
+        let at = |v: u32| (v as usize).min(infinite);
+        for (&(t, k), &new) in boundary.iter().zip(created.iter()) {
+            let Triangle { v, n } = tris[t as usize];
+            let (a, b, outer) = (v[(k + 1) % 3], v[(k + 2) % 3], n[k]);
+            tris[new as usize] = Triangle {
+                v: [a, b, i],
+                n: [NONE, NONE, outer],
+            };
+            let back = &mut tris[outer as usize].n;
+            back[usize::from(back[1] == t) + 2 * usize::from(back[2] == t)] = new;
+            fan[at(a)] = new;
         }
+        for &new in created.iter() {
+            let next = fan[at(tris[new as usize].v[1])];
+            tris[new as usize].n[0] = next;
+            tris[next as usize].n[1] = new;
+        }
+        for &t in cavity.iter() {
+            tris[t as usize].v = FREED;
+        }
+        free.extend_from_slice(cavity);
+        *hint = created.last().copied().unwrap_or(*hint);
     }
 
     /// Checks the invariants of the module documentation; the error names the first
