@@ -72,12 +72,9 @@ pub struct Delaunay2d<'a> {
     /// The predicates for the box of the points.
     filter: BoxFilter2d,
     // Scratch of one insertion, kept to avoid allocations.
-    /// `mark[t] == stamp`: triangle `t` is in the current cavity. A freed slot's mark is older
-    /// than any later stamp.
-    mark: Vec<u32>,
-    stamp: u32,
     cavity: Vec<u32>,
-    stack: Vec<u32>,
+    /// Cavity triangles to visit, each with the slot it was reached through.
+    stack: Vec<(u32, usize)>,
     /// The boundary edges of the current cavity (cavity triangle, slot) and the slots of
     /// their new triangles.
     boundary: Vec<(u32, usize)>,
@@ -114,8 +111,6 @@ impl<'a> Delaunay2d<'a> {
                 .map(|f| if keep(f) { f } else { NONE })
                 .collect(),
             filter: BoxFilter2d::new(lo, hi),
-            mark: Vec::new(),
-            stamp: 0,
             cavity: Vec::new(),
             stack: Vec::new(),
             boundary: Vec::new(),
@@ -268,7 +263,6 @@ impl<'a> Delaunay2d<'a> {
             t
         } else {
             self.tris.push(triangle);
-            self.mark.push(0);
             (self.tris.len() - 1) as u32
         }
     }
@@ -337,50 +331,40 @@ impl<'a> Delaunay2d<'a> {
     /// Replaces the cavity of vertex `i` (the triangles in conflict with it, a connected set
     /// grown from `start`, which is in conflict) by the fan from `i` over its boundary.
     fn replace_cavity(&mut self, start: u32, i: u32) {
-        self.stamp = self.stamp.wrapping_add(1);
-        if self.stamp == 0 {
-            self.mark.iter_mut().for_each(|m| *m = 0);
-            self.stamp = 1;
-        }
         self.search_cavity(start, i);
         self.allocate_fan();
         self.build_fan(i);
     }
 
-    /// The cavity of vertex `i` grown depth first from `start` and marked, in `cavity`, and
-    /// its boundary edges (cavity triangle, slot) in `boundary`: each cavity triangle's, once
-    /// its neighbours are tested, in slot order.
+    /// The cavity of vertex `i` grown depth first from `start`, in `cavity`, and its boundary
+    /// edges (cavity triangle, slot) in `boundary`: each cavity triangle's, once its
+    /// neighbours are tested, in slot order.
+    ///
+    /// The cavity is a disk all of whose vertices are on its boundary (no vertex disappears),
+    /// so the adjacency of its triangles is a tree: the only neighbour of a cavity triangle
+    /// already in the cavity is the one it was reached from, which is not tested again. The
+    /// outcome of a test is used as a number rather than a branch (it is unpredictable).
     fn search_cavity(&mut self, start: u32, i: u32) {
-        let Self {
-            coords,
-            tris,
-            mark,
-            stamp,
-            filter,
-            cavity,
-            stack,
-            boundary,
-            ..
-        } = self;
-        let (tris, mark, stamp) = (&tris[..], &mut mark[..], *stamp);
-        let p = coords[i as usize];
-        cavity.clear();
-        boundary.clear();
-        stack.push(start);
-        mark[start as usize] = stamp;
-        while let Some(t) = stack.pop() {
-            cavity.push(t);
-            for (k, n) in tris[t as usize].n.into_iter().enumerate() {
-                if mark[n as usize] == stamp {
-                    continue;
-                }
-                if conflict_by(filter, tris[n as usize].v, |v| &coords[v as usize], &p) {
-                    mark[n as usize] = stamp;
-                    stack.push(n);
-                } else {
-                    boundary.push((t, k));
-                }
-            }
+        self.cavity.clear();
+        self.boundary.clear();
+        let mut search = CavitySearch {
+            tris: &self.tris,
+            coords: &self.coords,
+            filter: &self.filter,
+            p: self.coords[i as usize],
+            stack: &mut self.stack,
+            boundary: &mut self.boundary,
+        };
+        self.cavity.push(start);
+        for k in 0..3 {
+            search.test(start, k);
+        }
+        while let Some((t, from)) = search.stack.pop() {
+            self.cavity.push(t);
+            // The other two slots, in increasing order.
+            let first = usize::from(from == 0);
+            search.test(t, first);
+            search.test(t, 3 - first - from);
         }
     }
 
@@ -398,7 +382,6 @@ impl<'a> Delaunay2d<'a> {
             n: [NONE; 3],
         };
         self.tris.resize(end + count - reused, added);
-        self.mark.resize(end + count - reused, 0);
         self.created
             .extend(end as u32..(end + count - reused) as u32);
     }
@@ -536,6 +519,36 @@ impl<'a> Delaunay2d<'a> {
             }
         }
         Ok(())
+    }
+}
+
+/// The state of [`Delaunay2d::search_cavity`].
+struct CavitySearch<'s> {
+    tris: &'s [Triangle],
+    coords: &'s [[f64; 2]],
+    filter: &'s BoxFilter2d,
+    /// The point inserted.
+    p: [f64; 2],
+    /// Cavity triangles to visit, each with the slot it was reached through.
+    stack: &'s mut Vec<(u32, usize)>,
+    boundary: &'s mut Vec<(u32, usize)>,
+}
+
+impl CavitySearch<'_> {
+    /// Tests the neighbour across slot `k` of cavity triangle `t`: in conflict, it is to be
+    /// visited; otherwise the edge is on the boundary. The outcome is used as a number
+    /// rather than a branch (it is unpredictable).
+    #[inline]
+    fn test(&mut self, t: u32, k: usize) {
+        let u = self.tris[t as usize].n[k];
+        let Triangle { v, n } = self.tris[u as usize];
+        let inside = conflict_by(self.filter, v, |x| &self.coords[x as usize], &self.p);
+        let back = usize::from(n[1] == t) + 2 * usize::from(n[2] == t);
+        self.stack.push((u, back));
+        self.stack.truncate(self.stack.len() - usize::from(!inside));
+        self.boundary.push((t, k));
+        self.boundary
+            .truncate(self.boundary.len() - usize::from(inside));
     }
 }
 
@@ -711,11 +724,13 @@ fn conflict_by<'a>(
     at: impl Fn(u32) -> &'a [f64; 2],
     p: &[f64; 2],
 ) -> bool {
+    // One test for the usual finite case (vertex ids are below INFINITE).
+    if v[0].max(v[1]).max(v[2]) != INFINITE {
+        let [a, b, c] = v.map(&at);
+        return predicates.incircle_sos(a, b, c, p) == Sign::Positive;
+    }
     match v.iter().position(|&x| x == INFINITE) {
-        None => {
-            let [a, b, c] = v.map(&at);
-            predicates.incircle_sos(a, b, c, p) == Sign::Positive
-        }
+        None => unreachable!("an infinite triangle has an infinite vertex"),
         Some(k) => {
             let a = at(v[(k + 1) % 3]);
             let b = at(v[(k + 2) % 3]);

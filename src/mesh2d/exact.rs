@@ -127,7 +127,16 @@ impl Predicates2d for BoxFilter2d {
         let (la, lb, lc) = (ax * ax + ay * ay, bx * bx + by * by, cx * cx + cy * cy);
         let (bc, ac, ab) = (bx * cy - cx * by, ax * cy - cx * ay, ax * by - bx * ay);
         let det = (la * bc - lb * ac) + lc * ab;
-        certified(det, self.incircle).unwrap_or_else(|| incircle_sos(a, b, c, d))
+        // The sign as a value, not a branch: it is unpredictable, the certification is not.
+        if det.abs() > self.incircle {
+            if det > 0.0 {
+                Sign::Positive
+            } else {
+                Sign::Negative
+            }
+        } else {
+            incircle_sos(a, b, c, d)
+        }
     }
 }
 
