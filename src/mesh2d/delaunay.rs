@@ -74,10 +74,10 @@ pub struct Delaunay2d<'a> {
     // Scratch of one insertion, kept to avoid allocations.
     cavity: Vec<u32>,
     /// Cavity triangles to visit, each with the slot it was reached through.
-    stack: Vec<(u32, usize)>,
+    stack: Vec<(u32, u32)>,
     /// The boundary edges of the current cavity (cavity triangle, slot) and the slots of
     /// their new triangles.
-    boundary: Vec<(u32, usize)>,
+    boundary: Vec<(u32, u32)>,
     created: Vec<u32>,
     /// `fan[a]`: the new triangle from vertex `a` of the current fan; the infinite vertex's
     /// is last.
@@ -98,11 +98,13 @@ impl<'a> Delaunay2d<'a> {
         let (lo, hi) = bounding_box(points);
         let (first, unique) = first_along(points, &hilbert_sorted(points, lo, hi));
         let label: Vec<u32> = unique.into_iter().filter(|&i| keep(i)).collect();
+        // Every insertion adds two triangles, and the slots its cavity frees are reused.
+        let capacity = 2 * label.len() + 16;
         let mut t = Delaunay2d {
             points,
             coords: label.iter().map(|&i| points[i as usize]).collect(),
             label,
-            tris: Vec::new(),
+            tris: Vec::with_capacity(capacity),
             free: Vec::new(),
             hint: 0,
             rng: 0x9e37_79b9,
@@ -356,34 +358,35 @@ impl<'a> Delaunay2d<'a> {
             boundary: &mut self.boundary,
         };
         self.cavity.push(start);
-        for k in 0..3 {
-            search.test(start, k);
-        }
+        let n = search.tris[start as usize].n;
+        search.test(start, n[0], 0);
+        search.test(start, n[1], 1);
+        search.test(start, n[2], 2);
         while let Some((t, from)) = search.stack.pop() {
             self.cavity.push(t);
             // The other two slots, in increasing order.
+            let n = search.tris[t as usize].n;
             let first = usize::from(from == 0);
-            search.test(t, first);
-            search.test(t, 3 - first - from);
+            let second = 3 - first - from as usize;
+            search.test(t, n[first], first);
+            search.test(t, n[second], second);
         }
     }
 
     /// A slot for each boundary edge's new triangle, in `created`: freed slots first, last
     /// freed first, then slots added at the end.
     fn allocate_fan(&mut self) {
-        let count = self.boundary.len();
-        let reused = count.min(self.free.len());
         self.created.clear();
-        self.created
-            .extend(self.free.drain(self.free.len() - reused..).rev());
-        let end = self.tris.len();
-        let added = Triangle {
-            v: FREED,
-            n: [NONE; 3],
-        };
-        self.tris.resize(end + count - reused, added);
-        self.created
-            .extend(end as u32..(end + count - reused) as u32);
+        for _ in 0..self.boundary.len() {
+            let slot = self.free.pop().unwrap_or_else(|| {
+                self.tris.push(Triangle {
+                    v: FREED,
+                    n: [NONE; 3],
+                });
+                (self.tris.len() - 1) as u32
+            });
+            self.created.push(slot);
+        }
     }
 
     /// The fan from vertex `i`: the new triangle of each boundary edge `(a, b)` is
@@ -406,6 +409,7 @@ impl<'a> Delaunay2d<'a> {
         let at = |v: u32| (v as usize).min(infinite);
         for (&(t, k), &new) in boundary.iter().zip(created.iter()) {
             let Triangle { v, n } = tris[t as usize];
+            let k = k as usize;
             let (a, b, outer) = (v[(k + 1) % 3], v[(k + 2) % 3], n[k]);
             tris[new as usize] = Triangle {
                 v: [a, b, i],
@@ -530,23 +534,22 @@ struct CavitySearch<'s> {
     /// The point inserted.
     p: [f64; 2],
     /// Cavity triangles to visit, each with the slot it was reached through.
-    stack: &'s mut Vec<(u32, usize)>,
-    boundary: &'s mut Vec<(u32, usize)>,
+    stack: &'s mut Vec<(u32, u32)>,
+    boundary: &'s mut Vec<(u32, u32)>,
 }
 
 impl CavitySearch<'_> {
-    /// Tests the neighbour across slot `k` of cavity triangle `t`: in conflict, it is to be
-    /// visited; otherwise the edge is on the boundary. The outcome is used as a number
+    /// Tests `u`, the neighbour across slot `k` of cavity triangle `t`: in conflict, it is to
+    /// be visited; otherwise the edge is on the boundary. The outcome is used as a number
     /// rather than a branch (it is unpredictable).
-    #[inline]
-    fn test(&mut self, t: u32, k: usize) {
-        let u = self.tris[t as usize].n[k];
+    #[inline(always)]
+    fn test(&mut self, t: u32, u: u32, k: usize) {
         let Triangle { v, n } = self.tris[u as usize];
         let inside = conflict_by(self.filter, v, |x| &self.coords[x as usize], &self.p);
-        let back = usize::from(n[1] == t) + 2 * usize::from(n[2] == t);
+        let back = u32::from(n[1] == t) + 2 * u32::from(n[2] == t);
         self.stack.push((u, back));
         self.stack.truncate(self.stack.len() - usize::from(!inside));
-        self.boundary.push((t, k));
+        self.boundary.push((t, k as u32));
         self.boundary
             .truncate(self.boundary.len() - usize::from(inside));
     }

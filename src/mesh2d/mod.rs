@@ -75,10 +75,10 @@ pub struct Conforming2d {
 /// the triangulation of their convex hull, counter-clockwise, label 1. Output vertex `i` is
 /// input point `i` (z = 0); duplicates are merged onto their first occurrence.
 pub fn delaunay_2d(xy: &[f64]) -> Result<Mesh> {
-    let points = input::points(xy)?;
-    let dt = Delaunay2d::new(&points)?;
+    let points = input::point_slice(xy)?;
+    let dt = Delaunay2d::new(points)?;
     let dims = vec![DIMENSION_UNKNOWN; points.len()];
-    Ok(mesh_of(&points, &dt, dims, Vec::new()))
+    Ok(mesh_of(points, &dt, dims, Vec::new()))
 }
 
 /// Pébay's conforming Delaunay triangulation of the points `xy` and the segments `segments`
