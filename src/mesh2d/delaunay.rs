@@ -3,12 +3,12 @@
 //! the convex hull.
 //!
 //! Invariants (checked exactly by [`Delaunay2d::validate`]):
-//! - every live triangle `t` has three distinct vertices `tri[t]`; a finite one is
+//! - every live triangle `t` has three distinct vertices `v`; a finite one is
 //!   counter-clockwise (`orient2d > 0`); an infinite one holds [`INFINITE`] once, and with the
-//!   infinite vertex at slot `k`, its finite edge `(tri[t][k+1], tri[t][k+2])` has the hull on
-//!   its right (the outside strictly on its left);
-//! - `adj[t][k]` is the live triangle across the edge opposite slot `k`, and that triangle
-//!   holds `t` across the same edge (symmetry);
+//!   infinite vertex at slot `k`, its finite edge `(v[k+1], v[k+2])` has the hull on its right
+//!   (the outside strictly on its left);
+//! - its neighbour `n[k]` is the live triangle across the edge opposite slot `k`, and that
+//!   triangle holds `t` across the same edge (symmetry);
 //! - no finite triangle has the opposite vertex of a finite neighbour inside its circumcircle
 //!   under [`incircle_sos`] (locally Delaunay, hence globally);
 //! - every inserted, non-duplicate point is a vertex.
@@ -20,7 +20,16 @@
 //!
 //! The points are inserted along a Hilbert curve; the storage order of the triangles (hence
 //! of [`Delaunay2d::triangles`] and [`Delaunay2d::compact`]) follows from that order, from the
-//! order in which each cavity is searched and from the reuse of freed slots, last freed first.
+//! walk, from the order in which each cavity is searched and from the reuse of freed slots,
+//! last freed first (the tests pin it).
+//!
+//! Layout and costs: a triangle is one record of its vertices and neighbours; vertices are
+//! numbered in insertion order and their coordinates stored in that order, so that what one
+//! insertion touches is close in memory; the orientation and in-circle tests first try a
+//! static filter whose error bound is fixed by the bounding box ([`BoxFilter2d`]). No hash map
+//! and no allocation is on the insertion path: the cavity is searched as a tree, the outcome
+//! of each in-circle test used as a number rather than a branch, and the fan is closed
+//! through an array indexed by vertex.
 
 use std::collections::HashMap;
 
@@ -34,8 +43,10 @@ pub const INFINITE: u32 = u32::MAX;
 /// No triangle.
 const NONE: u32 = u32::MAX;
 
-/// Bits per axis of the Hilbert curve of the insertion order.
+/// Bits per axis of the Hilbert curve of the insertion order (a multiple of 4, see
+/// [`hilbert_key`]).
 const HILBERT_BITS: u32 = 16;
+const _: () = assert!(HILBERT_BITS.is_multiple_of(4) && HILBERT_BITS <= 16);
 
 /// A triangle of the triangulation: its vertices and its neighbours.
 #[derive(Clone, Copy, Debug)]
@@ -64,7 +75,9 @@ pub struct Delaunay2d<'a> {
     tris: Vec<Triangle>,
     /// Freed slots, reused last freed first.
     free: Vec<u32>,
+    /// Where the next walk starts: the last triangle created.
     hint: u32,
+    /// The state of the walk's xorshift generator.
     rng: u32,
     /// `duplicate_of[i]`: the vertex point `i` was merged onto (`i` when it is a vertex, NONE
     /// when not inserted).
@@ -72,6 +85,7 @@ pub struct Delaunay2d<'a> {
     /// The predicates for the box of the points.
     filter: BoxFilter2d,
     // Scratch of one insertion, kept to avoid allocations.
+    /// The triangles in conflict with the point inserted, in search order.
     cavity: Vec<u32>,
     /// Cavity triangles to visit, each with the slot it was reached through.
     stack: Vec<(u32, u32)>,
@@ -100,6 +114,7 @@ impl<'a> Delaunay2d<'a> {
         let label: Vec<u32> = unique.into_iter().filter(|&i| keep(i)).collect();
         // Every insertion adds two triangles, and the slots its cavity frees are reused.
         let capacity = 2 * label.len() + 16;
+        let vertices = label.len();
         let mut t = Delaunay2d {
             points,
             coords: label.iter().map(|&i| points[i as usize]).collect(),
@@ -117,9 +132,8 @@ impl<'a> Delaunay2d<'a> {
             stack: Vec::new(),
             boundary: Vec::new(),
             created: Vec::new(),
-            fan: Vec::new(),
+            fan: vec![NONE; vertices + 1],
         };
-        t.fan = vec![NONE; t.coords.len() + 1];
         let seed = t.seed()?;
         for v in 0..t.coords.len() as u32 {
             if !seed.contains(&v) {
@@ -236,9 +250,8 @@ impl<'a> Delaunay2d<'a> {
             [a, c, INFINITE],
             [b, a, INFINITE],
         ];
-        for v in triangles {
-            self.new_triangle(v);
-        }
+        self.tris
+            .extend(triangles.map(|v| Triangle { v, n: [NONE; 3] }));
         self.link_by_edges(4);
         Ok([a, b, c])
     }
@@ -254,18 +267,6 @@ impl<'a> Delaunay2d<'a> {
                     }
                 }
             }
-        }
-    }
-
-    /// A triangle with vertices `v` and no neighbours yet, in the last freed slot if any.
-    fn new_triangle(&mut self, v: [u32; 3]) -> u32 {
-        let triangle = Triangle { v, n: [NONE; 3] };
-        if let Some(t) = self.free.pop() {
-            self.tris[t as usize] = triangle;
-            t
-        } else {
-            self.tris.push(triangle);
-            (self.tris.len() - 1) as u32
         }
     }
 
@@ -732,17 +733,13 @@ fn conflict_by<'a>(
         let [a, b, c] = v.map(&at);
         return predicates.incircle_sos(a, b, c, p) == Sign::Positive;
     }
-    match v.iter().position(|&x| x == INFINITE) {
-        None => unreachable!("an infinite triangle has an infinite vertex"),
-        Some(k) => {
-            let a = at(v[(k + 1) % 3]);
-            let b = at(v[(k + 2) % 3]);
-            match predicates.orient2d(a, b, p) {
-                Sign::Positive => true,
-                Sign::Zero => dot_sign(a, b, p) == Sign::Negative,
-                Sign::Negative => false,
-            }
-        }
+    let k = usize::from(v[1] == INFINITE) + 2 * usize::from(v[2] == INFINITE);
+    let a = at(v[(k + 1) % 3]);
+    let b = at(v[(k + 2) % 3]);
+    match predicates.orient2d(a, b, p) {
+        Sign::Positive => true,
+        Sign::Zero => dot_sign(a, b, p) == Sign::Negative,
+        Sign::Negative => false,
     }
 }
 
