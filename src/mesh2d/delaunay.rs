@@ -720,19 +720,32 @@ pub(super) fn conflict<'a>(v: [u32; 3], at: impl Fn(u32) -> &'a [f64; 2], p: &[f
     conflict_by(&Adaptive, v, at, p)
 }
 
-/// [`conflict`] decided by `predicates`.
-#[inline]
+/// [`conflict`] decided by `predicates`: the usual finite case inline, the infinite one
+/// apart.
+#[inline(always)]
 fn conflict_by<'a>(
     predicates: &impl Predicates2d,
     v: [u32; 3],
     at: impl Fn(u32) -> &'a [f64; 2],
     p: &[f64; 2],
 ) -> bool {
-    // One test for the usual finite case (vertex ids are below INFINITE).
+    // One test (vertex ids are below INFINITE).
     if v[0].max(v[1]).max(v[2]) != INFINITE {
         let [a, b, c] = v.map(&at);
-        return predicates.incircle_sos(a, b, c, p) == Sign::Positive;
+        predicates.incircle_sos(a, b, c, p) == Sign::Positive
+    } else {
+        infinite_conflict(predicates, v, at, p)
     }
+}
+
+/// [`conflict`] for an infinite triangle `v`.
+#[inline(never)]
+fn infinite_conflict<'a>(
+    predicates: &impl Predicates2d,
+    v: [u32; 3],
+    at: impl Fn(u32) -> &'a [f64; 2],
+    p: &[f64; 2],
+) -> bool {
     let k = usize::from(v[1] == INFINITE) + 2 * usize::from(v[2] == INFINITE);
     let a = at(v[(k + 1) % 3]);
     let b = at(v[(k + 2) % 3]);
