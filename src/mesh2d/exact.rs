@@ -70,7 +70,8 @@ impl Predicates2d for Adaptive {
 /// derived for and compares it with the fixed bound; only the calls it cannot decide go to the
 /// crate's predicates (which filter again with their own, tighter, bound). The decisions are
 /// the exact ones either way. Outside the range of the bounds they are infinite and never
-/// decide.
+/// decide; inside it the bounds are normal numbers, far above what products that underflow
+/// can lose (the argument of `filter.rs`, which holds for the box's bound as for a call's).
 #[derive(Clone, Copy, Debug)]
 pub struct BoxFilter2d {
     orient2d: f64,
