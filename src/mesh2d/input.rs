@@ -19,6 +19,11 @@ pub const MAX_POINTS_2D: usize = (u32::MAX / 2) as usize;
 
 /// The points of `xy` (x y interleaved), checked finite and within the coordinate limit.
 pub fn points(xy: &[f64]) -> Result<Vec<[f64; 2]>> {
+    point_slice(xy).map(<[[f64; 2]]>::to_vec)
+}
+
+/// [`points`] without the copy: `xy` seen as points.
+pub fn point_slice(xy: &[f64]) -> Result<&[[f64; 2]]> {
     let (points, rest) = xy.as_chunks::<2>();
     if !rest.is_empty() {
         return Err(Error::invalid_input(format!(
@@ -47,7 +52,7 @@ pub fn points(xy: &[f64]) -> Result<Vec<[f64; 2]>> {
             if bad.len() == 1 { "s" } else { "ve" }
         )));
     }
-    Ok(points.to_vec())
+    Ok(points)
 }
 
 /// The segments of `pairs` (2 point indices each) with their ends mapped through `first`

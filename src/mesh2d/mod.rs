@@ -75,10 +75,10 @@ pub struct Conforming2d {
 /// the triangulation of their convex hull, counter-clockwise, label 1. Output vertex `i` is
 /// input point `i` (z = 0); duplicates are merged onto their first occurrence.
 pub fn delaunay_2d(xy: &[f64]) -> Result<Mesh> {
-    let points = input::points(xy)?;
-    let dt = Delaunay2d::new(&points)?;
+    let points = input::point_slice(xy)?;
+    let dt = Delaunay2d::new(points)?;
     let dims = vec![DIMENSION_UNKNOWN; points.len()];
-    Ok(mesh_of(&points, &dt, dims, Vec::new()))
+    Ok(mesh_of(points, &dt, dims, Vec::new()))
 }
 
 /// Pébay's conforming Delaunay triangulation of the points `xy` and the segments `segments`
@@ -378,9 +378,10 @@ fn mesh_of(points: &[[f64; 2]], dt: &Delaunay2d, mut dims: Vec<i8>, edges: Vec<u
             dims[i] = DIMENSION_UNKNOWN;
         }
     }
-    let triangles: Vec<u32> = dt.triangles().into_iter().flatten().collect();
+    let triangles = dt.triangles().into_flattened();
+    let vertices: Vec<[f64; 3]> = points.iter().map(|p| [p[0], p[1], 0.0]).collect();
     Mesh {
-        vertices: points.iter().flat_map(|p| [p[0], p[1], 0.0]).collect(),
+        vertices: vertices.into_flattened(),
         vertex_dimensions: dims,
         triangle_labels: vec![1; triangles.len() / 3],
         triangles,
