@@ -464,7 +464,9 @@ static int names_culprit(const char *message, const uint32_t *culprits, size_t c
     }
     char *end;
     unsigned long long v = strtoull(p, &end, 10);
-    int whole = (p == message || !isalnum((unsigned char)p[-1])) && *end != '.';
+    /* Not part of a word or of a decimal number ("triangle 13." is fine, "0.13" is not). */
+    int whole = (p == message || (!isalnum((unsigned char)p[-1]) && p[-1] != '.')) &&
+                !(*end == '.' && isdigit((unsigned char)end[1])) && !isalpha((unsigned char)*end);
     for (size_t i = 0; whole && i < count; i++)
       if (v == culprits[i]) return 1;
     p = end;
