@@ -100,6 +100,12 @@ int ref_tetgen_polygons(const double *xyz, size_t n, const uint32_t *corners,
                         const double *holes, size_t n_holes, const char *switches,
                         RefSurfaceMesh *out, RefTiming *timing);
 
+/* TetGen's self-intersection check ("pdzQ") of the surface of `m` triangles: *culprits (malloc'd,
+ * sorted, *count of them) receives the indices of the triangles TetGen reports as intersecting
+ * another one other than along their shared vertices and edge; *count = 0 when none. */
+int ref_tetgen_intersections(const double *xyz, size_t n, const uint32_t *tris, size_t m,
+                             uint32_t **culprits, size_t *count);
+
 #ifdef __cplusplus
 }
 #endif

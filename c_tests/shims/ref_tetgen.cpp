@@ -293,3 +293,62 @@ extern "C" int ref_tetgen_polygons(const double *xyz, size_t n, const uint32_t *
   return tetgen_plc("ref_tetgen_polygons", xyz, n, Facets{corners, offsets, m}, regions, n_regions, holes,
                     n_holes, switches, out, timing);
 }
+
+extern "C" int ref_tetgen_intersections(const double *xyz, size_t n, const uint32_t *tris, size_t m,
+                                        uint32_t **culprits, size_t *count) {
+  if (!xyz || !tris || !culprits || !count) return ref::fail("ref_tetgen_intersections: NULL argument");
+  if (n > 0x7fffffff || m > 0x7fffffff) return ref::fail("ref_tetgen_intersections: input too large for TetGen");
+  for (std::size_t k = 0; k < 3 * m; ++k)
+    if (tris[k] >= n) return ref::fail("ref_tetgen_intersections: index out of range");
+  try {
+    tetgenio in, result;
+    in.firstnumber = 0;
+    in.numberofpoints = int(n);
+    in.pointlist = new REAL[3 * (n ? n : 1)];
+    for (std::size_t i = 0; i < 3 * n; ++i) in.pointlist[i] = xyz[i];
+    in.numberoffacets = int(m);
+    in.facetlist = new tetgenio::facet[m ? m : 1];
+    for (std::size_t f = 0; f < m; ++f) tetgenio::init(&in.facetlist[f]);
+    for (std::size_t f = 0; f < m; ++f) {
+      tetgenio::facet &facet = in.facetlist[f];
+      facet.polygonlist = new tetgenio::polygon[1];
+      facet.numberofpolygons = 1;
+      tetgenio::init(&facet.polygonlist[0]);
+      facet.polygonlist[0].numberofvertices = 3;
+      facet.polygonlist[0].vertexlist = new int[3];
+      for (int k = 0; k < 3; ++k) facet.polygonlist[0].vertexlist[k] = int(tris[3 * f + std::size_t(k)]);
+    }
+    // d: detect self-intersections only; the faces involved come back in trifacelist.
+    char switches[] = "pdzQ";
+    tetrahedralize(switches, &in, &result);
+    using Key = std::array<uint32_t, 3>;
+    auto key = [](uint32_t a, uint32_t b, uint32_t c) {
+      Key k{a, b, c};
+      std::sort(k.begin(), k.end());
+      return k;
+    };
+    std::map<Key, std::vector<uint32_t>> index;
+    for (std::size_t f = 0; f < m; ++f) index[key(tris[3 * f], tris[3 * f + 1], tris[3 * f + 2])].push_back(uint32_t(f));
+    std::set<uint32_t> found;
+    for (int f = 0; f < result.numberoftrifaces; ++f) {
+      const int *v = result.trifacelist + 3 * f;
+      auto it = index.find(key(uint32_t(v[0]), uint32_t(v[1]), uint32_t(v[2])));
+      if (it != index.end()) found.insert(it->second.begin(), it->second.end());
+    }
+    uint32_t *list = static_cast<uint32_t *>(std::malloc((found.size() ? found.size() : 1) * sizeof(uint32_t)));
+    if (!list) return ref::fail("out of memory");
+    std::size_t k = 0;
+    for (uint32_t f : found) list[k++] = f;
+    *culprits = list;
+    *count = k;
+    return 0;
+  } catch (const std::exception &e) {
+    return ref::fail(e.what());
+  } catch (int code) {
+    char message[96];
+    std::snprintf(message, sizeof message, "ref_tetgen_intersections: TetGen failed with code %d", code);
+    return ref::fail(message);
+  } catch (...) {
+    return ref::fail("ref_tetgen_intersections: unknown exception");
+  }
+}
