@@ -15,10 +15,24 @@ use crate::predicates::Sign;
 /// Most flips tried on one edge before it is declared stuck.
 const MAX_FLIPS: usize = 256;
 
-/// How deep [`remove_edge_deep`] goes to unblock a star, and how many edge removals it
-/// tries.
-const DEPTH: u32 = 3;
-const BUDGET: usize = 256;
+/// How hard [`recover_edge`] tries: how deep [`remove_edge_deep`] goes to unblock a star,
+/// and how many edge removals each unblocking tries.
+#[derive(Clone, Copy, Debug)]
+pub struct Effort {
+    pub depth: u32,
+    pub budget: usize,
+}
+
+/// The first try on every edge, cheap.
+pub const QUICK: Effort = Effort {
+    depth: 2,
+    budget: 64,
+};
+/// The second try on the edges the first left missing.
+pub const THOROUGH: Effort = Effort {
+    depth: 3,
+    budget: 256,
+};
 
 /// What the segment from a vertex meets first, leaving that vertex's star.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -33,15 +47,15 @@ pub enum Crossing {
 
 /// The first crossing of the segment from `a` to `b`, or `None` if `(a, b)` is an edge.
 pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Crossing>> {
-    for t in mesh.ball(a) {
+    let found = mesh.search_ball(a, |mesh, t| {
         let v = mesh.tets.vertices(t);
         let i = v.iter().position(|&x| x == a).unwrap_or(0);
         let (_, [x, y, z]) = mesh.with_apex(t, i);
         if [x, y, z].contains(&b) {
-            return Ok(None);
+            return Some(None);
         }
         if !mesh.positive(v) {
-            continue;
+            return None;
         }
         // b in the cone of the star of a at t: on the inner side of the three planes at a.
         let s = [
@@ -50,9 +64,9 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
             mesh.orient([a, z, x, b]),
         ];
         if s.contains(&Sign::Negative) {
-            continue;
+            return None;
         }
-        let crossing = match s {
+        Some(Some(match s {
             [Sign::Zero, Sign::Zero, _] => Crossing::Vertex(y),
             [_, Sign::Zero, Sign::Zero] => Crossing::Vertex(z),
             [Sign::Zero, _, Sign::Zero] => Crossing::Vertex(x),
@@ -60,16 +74,21 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
             [_, Sign::Zero, _] => Crossing::Edge([y, z], t),
             [.., Sign::Zero] => Crossing::Edge([z, x], t),
             _ => Crossing::Facet(t, i),
-        };
-        return Ok(Some(crossing));
-    }
-    Err(Error::internal(format!(
-        "no tetrahedron around vertex {a} faces vertex {b}"
-    )))
+        }))
+    });
+    found.ok_or_else(|| {
+        Error::internal(format!("no tetrahedron around vertex {a} faces vertex {b}"))
+    })
 }
 
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
-pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -> Result<bool> {
+pub fn recover_edge(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    a: u32,
+    b: u32,
+    effort: Effort,
+) -> Result<bool> {
     for _ in 0..MAX_FLIPS {
         let Some(from_a) = first_crossing(mesh, a, b)? else {
             return Ok(true);
@@ -87,14 +106,14 @@ pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -
         if advance(mesh, protected, a, from_a)? || advance(mesh, protected, b, from_b)? {
             continue;
         }
-        if unblock(mesh, protected, from_a)? {
+        if unblock(mesh, protected, from_a, effort)? {
             continue;
         }
         // A failed unblocking may have kept flips: follow the segment from b again.
         let Some(from_b) = first_crossing(mesh, b, a)? else {
             return Ok(true);
         };
-        if unblock(mesh, protected, from_b)? {
+        if unblock(mesh, protected, from_b, effort)? {
             continue;
         }
         return Ok(false);
@@ -117,21 +136,33 @@ fn advance(mesh: &mut TetMesh, protected: &Protected, start: u32, c: Crossing) -
 
 /// Removes one edge of the first crossed facet, or the crossed edge, whatever the ring
 /// triangulation, to change the star that blocks [`advance`].
-fn unblock(mesh: &mut TetMesh, protected: &Protected, c: Crossing) -> Result<bool> {
+fn unblock(mesh: &mut TetMesh, protected: &Protected, c: Crossing, effort: Effort) -> Result<bool> {
     let any = |_: &TetMesh, _: u32, _: u32| true;
     match c {
         Crossing::Facet(t, i) => {
             let (_, [x, y, z]) = mesh.with_apex(t, i);
             for e in [[x, y], [y, z], [z, x]] {
-                if remove_edge_deep(mesh, protected, e, &any, DEPTH, &mut BUDGET.to_owned())? {
+                if remove_edge_deep(
+                    mesh,
+                    protected,
+                    e,
+                    &any,
+                    effort.depth,
+                    &mut effort.budget.to_owned(),
+                )? {
                     return Ok(true);
                 }
             }
             Ok(false)
         }
-        Crossing::Edge(e, _) => {
-            remove_edge_deep(mesh, protected, e, &any, DEPTH, &mut BUDGET.to_owned())
-        }
+        Crossing::Edge(e, _) => remove_edge_deep(
+            mesh,
+            protected,
+            e,
+            &any,
+            effort.depth,
+            &mut effort.budget.to_owned(),
+        ),
         Crossing::Vertex(_) => Ok(false),
     }
 }

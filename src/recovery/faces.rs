@@ -82,6 +82,9 @@ pub fn crossing_edges(mesh: &mut TetMesh, f: [u32; 3]) -> Vec<([u32; 2], u32)> {
 /// Recovers triangle `f` (its edges in the mesh) by edge removals; `false` if it is still
 /// missing when no crossing edge can be removed.
 pub fn recover_face(mesh: &mut TetMesh, protected: &Protected, f: [u32; 3]) -> Result<bool> {
+    if mesh.find_face(f).is_some() {
+        return Ok(true);
+    }
     let clear = |m: &TetMesh, u: u32, w: u32| !crosses(m, f, u, w);
     loop {
         let edges = crossing_edges(mesh, f);

@@ -191,7 +191,7 @@ fn best_ring_triangulation(
     let n = ring.len();
     // best[i][j]: the best worst shape over triangulations of the sub-polygon i..=j, and the
     // apex k of the triangle on side (i, j).
-    let mut best = vec![vec![(f64::NEG_INFINITY, usize::MAX); n]; n];
+    let mut best = [[(f64::NEG_INFINITY, usize::MAX); MAX_SHELL]; MAX_SHELL];
     for i in 0..n - 1 {
         best[i][i + 1] = (f64::INFINITY, usize::MAX);
     }

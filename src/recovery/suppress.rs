@@ -9,14 +9,15 @@
 //!
 //! The paper proves the moved point exists (the piece is star-shaped from `P`, which sees
 //! the outline's triangulation from its side); here the move is searched along the sum of
-//! the piece's side normals, halving the distance until every new tetrahedron is positive.
+//! the piece's side normals, then toward the centroid of the piece's vertices, then between
+//! the two, halving the distance until every new tetrahedron is positive.
 
 use std::collections::HashMap;
 
 use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
-use crate::geometry::{add, dist, norm};
+use crate::geometry::{add, dist, norm, sub};
 use crate::io::surface::triangulate_polygon;
 use crate::predicates::Point;
 
@@ -135,7 +136,6 @@ fn suppress(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32)
             let sign = if front { 1.0 } else { -1.0 };
             normal = add(&normal, &[sign * n[0], sign * n[1], sign * n[2]]);
         }
-        let length = norm(&normal);
         let q = mesh.add_point(origin);
         let mut tets: Vec<[u32; 4]> = piece
             .iter()
@@ -146,19 +146,18 @@ fn suppress(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32)
                 tets.push(if front { [x, y, z, q] } else { [y, x, z, q] });
             }
         }
-        let mut step = 0.25 * reach / length;
-        let mut placed = false;
-        for _ in 0..MOVES {
-            mesh.points[q as usize] = add(
-                &origin,
-                &[step * normal[0], step * normal[1], step * normal[2]],
-            );
-            if length > 0.0 && tets.iter().all(|&t| mesh.positive(t)) {
-                placed = true;
-                break;
-            }
-            step *= 0.5;
-        }
+        let toward = sub(&centroid(mesh, &piece, p), &origin);
+        let (n, w) = (unit(&normal), unit(&toward));
+        let between = n.zip(w).and_then(|(n, w)| unit(&add(&n, &w)));
+        let directions = [n, w, between];
+        let placed = directions.iter().flatten().any(|d| {
+            let mut step = 0.25 * reach;
+            (0..MOVES).any(|_| {
+                mesh.points[q as usize] = add(&origin, &[step * d[0], step * d[1], step * d[2]]);
+                step *= 0.5;
+                tets.iter().all(|&t| mesh.positive(t))
+            })
+        });
         if !placed {
             return Err(failure(format!(
                 "point {p} added on the surface near {origin:?} could not be moved off it"
@@ -173,6 +172,27 @@ fn suppress(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32)
     }
     part.host.remove(&p);
     Ok(())
+}
+
+/// `u` scaled to length 1, if it has a length.
+fn unit(u: &Point) -> Option<Point> {
+    let l = norm(u);
+    (l > 0.0 && l.is_finite()).then(|| [u[0] / l, u[1] / l, u[2] / l])
+}
+
+/// The mean of the vertices of `piece` other than `p`.
+fn centroid(mesh: &TetMesh, piece: &[u32], p: u32) -> Point {
+    let mut sum = [0.0; 3];
+    let mut count = 0.0;
+    for &t in piece {
+        for v in mesh.tets.vertices(t) {
+            if v != p {
+                sum = add(&sum, mesh.point(v));
+                count += 1.0;
+            }
+        }
+    }
+    [sum[0] / count, sum[1] / count, sum[2] / count]
 }
 
 /// The tetrahedra of `ball` (the star of `p`) grouped by the surface through `p`.

@@ -32,6 +32,8 @@ pub struct TetMesh {
     pub points: Vec<Point>,
     pub tets: Tets,
     vertex_tet: Vec<u32>,
+    /// The search buffer of [`TetMesh::search_ball`].
+    scratch: Vec<u32>,
 }
 
 impl TetMesh {
@@ -55,6 +57,7 @@ impl TetMesh {
             vertex_tet: vec![NONE; points.len()],
             points,
             tets,
+            scratch: Vec::new(),
         };
         for t in 0..mesh.tets.slots() as u32 {
             if mesh.tets.is_live(t) {
@@ -113,16 +116,38 @@ impl TetMesh {
 
     /// The tetrahedra incident to `v`, found by a search across facets from `vertex_tet`.
     pub fn ball(&mut self, v: u32) -> Vec<u32> {
+        let mut ball = Vec::new();
+        self.search_ball(v, |_, t| {
+            ball.push(t);
+            None::<()>
+        });
+        ball
+    }
+
+    /// Visits the tetrahedra incident to `v` (a search across facets from `vertex_tet`) until
+    /// `found` returns something.
+    pub fn search_ball<T>(
+        &mut self,
+        v: u32,
+        mut found: impl FnMut(&Self, u32) -> Option<T>,
+    ) -> Option<T> {
         let start = self.vertex_tet[v as usize];
         if start == NONE {
-            return Vec::new();
+            return None;
         }
-        let mut ball = vec![start];
+        let mut seen = std::mem::take(&mut self.scratch);
+        seen.clear();
+        seen.push(start);
         self.tets.mark[start as usize] = 1;
         let mut k = 0;
-        while k < ball.len() {
-            let t = ball[k];
+        let mut result = None;
+        while k < seen.len() {
+            let t = seen[k];
             k += 1;
+            result = found(self, t);
+            if result.is_some() {
+                break;
+            }
             let verts = self.tets.vertices(t);
             for (i, &x) in verts.iter().enumerate() {
                 if x == v {
@@ -131,32 +156,31 @@ impl TetMesh {
                 let n = self.tets.neighbor(t, i);
                 if self.tets.mark[n as usize] == 0 {
                     self.tets.mark[n as usize] = 1;
-                    ball.push(n);
+                    seen.push(n);
                 }
             }
         }
-        for &t in &ball {
+        for &t in &seen {
             self.tets.mark[t as usize] = 0;
         }
-        ball
+        self.scratch = seen;
+        result
     }
 
     /// A tetrahedron with edge `(a, b)`, if the edge exists.
     pub fn find_edge(&mut self, a: u32, b: u32) -> Option<u32> {
-        self.ball(a)
-            .into_iter()
-            .find(|&t| self.tets.vertices(t).contains(&b))
+        self.search_ball(a, |m, t| m.tets.vertices(t).contains(&b).then_some(t))
     }
 
     /// The facet `(t, i)` (tetrahedron and local index of the opposite vertex) with vertices
     /// `f`, if it exists; either of its two tetrahedra.
     pub fn find_face(&mut self, f: [u32; 3]) -> Option<(u32, usize)> {
-        let k = key(f);
-        self.ball(f[0]).into_iter().find_map(|t| {
-            let v = self.tets.vertices(t);
-            (0..4)
-                .find(|&i| key(FACE[i].map(|j| v[j])) == k)
-                .map(|i| (t, i))
+        self.search_ball(f[0], |m, t| {
+            let v = m.tets.vertices(t);
+            if !(v.contains(&f[1]) && v.contains(&f[2])) {
+                return None;
+            }
+            v.iter().position(|x| !f.contains(x)).map(|i| (t, i))
         })
     }
 
