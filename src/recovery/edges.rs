@@ -15,24 +15,10 @@ use crate::predicates::Sign;
 /// Most flips tried on one edge before it is declared stuck.
 const MAX_FLIPS: usize = 256;
 
-/// How hard [`recover_edge`] tries: how deep [`remove_edge_deep`] goes to unblock a star,
-/// and how many edge removals each unblocking tries.
-#[derive(Clone, Copy, Debug)]
-pub struct Effort {
-    pub depth: u32,
-    pub budget: usize,
-}
-
-/// The first try on every edge, cheap.
-pub const QUICK: Effort = Effort {
-    depth: 2,
-    budget: 64,
-};
-/// The second try on the edges the first left missing.
-pub const THOROUGH: Effort = Effort {
-    depth: 3,
-    budget: 256,
-};
+/// How deep [`remove_edge_deep`] goes to unblock a star, and how many edge removals each
+/// unblocking tries.
+const DEPTH: u32 = 3;
+const BUDGET: usize = 256;
 
 /// What the segment from a vertex meets first, leaving that vertex's star.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -82,13 +68,7 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
 }
 
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
-pub fn recover_edge(
-    mesh: &mut TetMesh,
-    protected: &Protected,
-    a: u32,
-    b: u32,
-    effort: Effort,
-) -> Result<bool> {
+pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -> Result<bool> {
     for _ in 0..MAX_FLIPS {
         let Some(from_a) = first_crossing(mesh, a, b)? else {
             return Ok(true);
@@ -106,14 +86,14 @@ pub fn recover_edge(
         if advance(mesh, protected, a, from_a)? || advance(mesh, protected, b, from_b)? {
             continue;
         }
-        if unblock(mesh, protected, from_a, effort)? {
+        if unblock(mesh, protected, from_a)? {
             continue;
         }
         // A failed unblocking may have kept flips: follow the segment from b again.
         let Some(from_b) = first_crossing(mesh, b, a)? else {
             return Ok(true);
         };
-        if unblock(mesh, protected, from_b, effort)? {
+        if unblock(mesh, protected, from_b)? {
             continue;
         }
         return Ok(false);
@@ -136,33 +116,21 @@ fn advance(mesh: &mut TetMesh, protected: &Protected, start: u32, c: Crossing) -
 
 /// Removes one edge of the first crossed facet, or the crossed edge, whatever the ring
 /// triangulation, to change the star that blocks [`advance`].
-fn unblock(mesh: &mut TetMesh, protected: &Protected, c: Crossing, effort: Effort) -> Result<bool> {
+fn unblock(mesh: &mut TetMesh, protected: &Protected, c: Crossing) -> Result<bool> {
     let any = |_: &TetMesh, _: u32, _: u32| true;
     match c {
         Crossing::Facet(t, i) => {
             let (_, [x, y, z]) = mesh.with_apex(t, i);
             for e in [[x, y], [y, z], [z, x]] {
-                if remove_edge_deep(
-                    mesh,
-                    protected,
-                    e,
-                    &any,
-                    effort.depth,
-                    &mut effort.budget.to_owned(),
-                )? {
+                if remove_edge_deep(mesh, protected, e, &any, DEPTH, &mut BUDGET.to_owned())? {
                     return Ok(true);
                 }
             }
             Ok(false)
         }
-        Crossing::Edge(e, _) => remove_edge_deep(
-            mesh,
-            protected,
-            e,
-            &any,
-            effort.depth,
-            &mut effort.budget.to_owned(),
-        ),
+        Crossing::Edge(e, _) => {
+            remove_edge_deep(mesh, protected, e, &any, DEPTH, &mut BUDGET.to_owned())
+        }
         Crossing::Vertex(_) => Ok(false),
     }
 }

@@ -108,16 +108,13 @@ fn recover(mesh: &mut TetMesh, part: &mut Partition, triangles: usize) -> Result
             .into_iter()
             .filter(|e| !edges_done.contains(e))
             .collect();
-        let mut stuck = pending;
-        for effort in [edges::QUICK, edges::THOROUGH] {
-            stuck = until_stable(stuck, |&[a, b]| {
-                let done = edges::recover_edge(mesh, &part.protected, a, b, effort)?;
-                if done {
-                    edges_done.insert([a, b]);
-                }
-                Ok(done)
-            })?;
-        }
+        let stuck = until_stable(pending, |&[a, b]| {
+            let done = edges::recover_edge(mesh, &part.protected, a, b)?;
+            if done {
+                edges_done.insert([a, b]);
+            }
+            Ok(done)
+        })?;
         if !stuck.is_empty() {
             for [a, b] in stuck {
                 spend(&mut budget, || format!("sub-edge ({a}, {b})"))?;

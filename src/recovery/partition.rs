@@ -13,8 +13,6 @@ use std::collections::HashMap;
 
 use super::flips::Protected;
 use super::tetmesh::key;
-use crate::geometry::{add, cross, dot, sub};
-use crate::predicates::Point;
 
 /// Where a point added on the surface lies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -127,27 +125,6 @@ impl Partition {
             }
         }
         Host::Face(common.first().copied().unwrap_or(0))
-    }
-
-    /// The point of the host's line (input edge) or plane (input triangle) nearest to `p`:
-    /// points added on the surface are put there, so that rounding errors do not pile up
-    /// from one added point to the next.
-    pub fn snap(&self, host: Host, points: &[Point], p: Point) -> Point {
-        let at = |v: u32| points[v as usize];
-        match host {
-            Host::Edge([a, b]) => {
-                let (a, b) = (at(a), at(b));
-                let d = sub(&b, &a);
-                let t = dot(&sub(&p, &a), &d) / dot(&d, &d);
-                add(&a, &[t * d[0], t * d[1], t * d[2]])
-            }
-            Host::Face(f) => {
-                let [a, b, c] = self.input[f].map(at);
-                let n = cross(&sub(&b, &a), &sub(&c, &a));
-                let t = dot(&sub(&p, &a), &n) / dot(&n, &n);
-                sub(&p, &[t * n[0], t * n[1], t * n[2]])
-            }
-        }
     }
 
     /// Every current sub-edge, sorted.

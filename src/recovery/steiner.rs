@@ -8,7 +8,7 @@
 //! ([`super::partition`]). The cone is accepted only if every new tetrahedron is positive.
 
 use super::edges::Crossing;
-use super::partition::{Host, Partition};
+use super::partition::Partition;
 use super::tetmesh::TetMesh;
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{add, cross, dot, sub};
@@ -142,7 +142,6 @@ pub fn split_subedge(
             )))
         }
     };
-    let point = part.snap(part.host_of_subedge(p, q), &mesh.points, point);
     match cone(mesh, part, &set, point)? {
         Some(s) => {
             part.split_edge(p, q, s);
@@ -175,7 +174,6 @@ pub fn split_subface(
     };
     let corners = t.map(|w| mesh.point(w));
     let point = segment_plane(mesh.point(u), mesh.point(v), corners);
-    let point = part.snap(Host::Face(f), &mesh.points, point);
     match cone(mesh, part, &shell, point)? {
         Some(s) => {
             part.split_face(f, t, s);
