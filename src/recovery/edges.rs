@@ -9,7 +9,7 @@
 
 use super::flips::{flip23, remove_edge, remove_edge_deep, Protected};
 use super::tetmesh::TetMesh;
-use crate::error::{Error, Result};
+use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::Sign;
 
 /// Most flips tried on one edge before it is declared stuck.
@@ -78,9 +78,7 @@ pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -
         };
         for crossing in [from_a, from_b] {
             if let Crossing::Vertex(v) = crossing {
-                return Err(Error::invalid_input(format!(
-                    "vertex {v} lies on the edge ({a}, {b})"
-                )));
+                return Err(vertex_on_edge(mesh, v, [a, b]));
             }
         }
         if advance(mesh, protected, a, from_a)? || advance(mesh, protected, b, from_b)? {
@@ -99,6 +97,21 @@ pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -
         return Ok(false);
     }
     Ok(false)
+}
+
+/// The error for vertex `v` found on the segment `e`: bad input when all three are input
+/// vertices (validation lets no vertex lie on an input edge, so this is a check of last
+/// resort), else the rounding of points added on the surface, which stops recovery.
+pub fn vertex_on_edge(mesh: &TetMesh, v: u32, e: [u32; 2]) -> Error {
+    let message = format!("vertex {v} lies on the edge ({}, {})", e[0], e[1]);
+    if [v, e[0], e[1]].iter().all(|&x| !mesh.is_added(x)) {
+        Error::invalid_input(message)
+    } else {
+        Error::new(
+            ErrorKind::Limit,
+            format!("{message} (rounded points added on the surface)"),
+        )
+    }
 }
 
 /// Takes away the first crossing from `start`: a 2-3 flip of the crossed facet, or the

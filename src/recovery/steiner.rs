@@ -136,11 +136,7 @@ pub fn split_subedge(
             };
             (shell, line_line(&pp, &pq, mesh.point(x), mesh.point(y)))
         }
-        Crossing::Vertex(v) => {
-            return Err(Error::invalid_input(format!(
-                "vertex {v} lies on the edge ({p}, {q})"
-            )))
-        }
+        Crossing::Vertex(v) => return Err(super::edges::vertex_on_edge(mesh, v, [p, q])),
     };
     match cone(mesh, part, &set, point)? {
         Some(s) => {

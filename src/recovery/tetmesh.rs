@@ -34,6 +34,8 @@ pub struct TetMesh {
     vertex_tet: Vec<u32>,
     /// The search buffer of [`TetMesh::search_ball`].
     scratch: Vec<u32>,
+    /// Points from this id on were added after the Delaunay triangulation.
+    first_added: u32,
 }
 
 impl TetMesh {
@@ -58,7 +60,9 @@ impl TetMesh {
             points,
             tets,
             scratch: Vec::new(),
+            first_added: 0,
         };
+        mesh.first_added = mesh.points.len() as u32;
         for t in 0..mesh.tets.slots() as u32 {
             if mesh.tets.is_live(t) {
                 mesh.note_vertices(t);
@@ -85,6 +89,11 @@ impl TetMesh {
         self.points.push(p);
         self.vertex_tet.push(NONE);
         (self.points.len() - 1) as u32
+    }
+
+    /// Whether `v` was added after the Delaunay triangulation (a Steiner point).
+    pub fn is_added(&self, v: u32) -> bool {
+        v >= self.first_added
     }
 
     /// Drops the last point added, which no tetrahedron uses.
