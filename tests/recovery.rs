@@ -338,3 +338,59 @@ fn corpus_surfaces() {
     }
     assert!(failures.is_empty(), "failed: {failures:?}");
 }
+
+/// Flips on a Delaunay tetrahedralization of random points: every 2-3 flip and edge removal
+/// that is applied leaves a valid mesh (orientation, gluing, vertex stars), and protected
+/// facets and edges survive.
+#[test]
+fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
+    use delmesh::recovery::flips::{flip23, remove_edge, Protected};
+    use delmesh::recovery::tetmesh::TetMesh;
+    let mut state = 0x2545_f491_u64;
+    let mut next = || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let points: Vec<[f64; 3]> = (0..40).map(|_| [next(), next(), next()]).collect();
+    let used: Vec<u32> = (0..40).collect();
+    let mut mesh = TetMesh::delaunay(points, &used).unwrap();
+    let first = mesh.tets.live().next().unwrap();
+    let mut protected = Protected::default();
+    let kept = mesh.facet(first, 0);
+    protected.facets.insert({
+        let mut k = kept;
+        k.sort_unstable();
+        k
+    });
+    protected
+        .edges
+        .insert([kept[0].min(kept[1]), kept[0].max(kept[1])]);
+    let any = |_: &TetMesh, _: u32, _: u32| true;
+    let (mut flipped, mut removed) = (0, 0);
+    for round in 0..200u32 {
+        let live: Vec<u32> = mesh.tets.live().collect();
+        let t = live[(round as usize * 7919) % live.len()];
+        let i = (round % 4) as usize;
+        if flip23(&mut mesh, &protected, t, i, &any).unwrap() {
+            flipped += 1;
+        } else {
+            let v = mesh.tets.vertices(t);
+            let e = [v[i], v[(i + 1) % 4]];
+            if !e.contains(&u32::MAX) && remove_edge(&mut mesh, &protected, e, &any).unwrap() {
+                removed += 1;
+            }
+        }
+        mesh.validate().unwrap();
+        assert!(mesh.find_face(kept).is_some(), "protected facet destroyed");
+        assert!(
+            mesh.find_edge(kept[0], kept[1]).is_some(),
+            "protected edge destroyed"
+        );
+    }
+    assert!(
+        flipped > 10 && removed > 10,
+        "{flipped} flips, {removed} removals"
+    );
+}
