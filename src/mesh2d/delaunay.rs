@@ -33,8 +33,9 @@
 
 use std::collections::HashMap;
 
-use super::exact::{dot_sign, incircle_sos, Adaptive, BoxFilter2d, Predicates2d};
+use super::exact::{dot_sign, incircle_sos, Adaptive, Predicates2d};
 use crate::error::{Error, Result};
+use crate::predicates::BoxFilter2d;
 use crate::predicates::{orient2d, Sign};
 
 /// The vertex at infinity.
@@ -127,7 +128,7 @@ impl<'a> Delaunay2d<'a> {
                 .into_iter()
                 .map(|f| if keep(f) { f } else { NONE })
                 .collect(),
-            filter: BoxFilter2d::new(lo, hi),
+            filter: BoxFilter2d::new(&lo, &hi),
             cavity: Vec::new(),
             stack: Vec::new(),
             boundary: Vec::new(),

@@ -10,16 +10,15 @@
 //! - [`incircle_sos`]`(a, b, c, d)`, for counter-clockwise `a, b, c`: `Positive` when `d` is
 //!   inside their circumcircle, never `Zero` for four distinct points.
 //!
-//! [`BoxFilter2d`] decides `orient2d` and [`incircle_sos`] for the points of one box with a
-//! static filter before the crate's predicates; [`Predicates2d`] lets the conflict test of
-//! `delaunay.rs` run on either.
+//! [`Predicates2d`] lets the conflict test of `delaunay.rs` run on the crate's predicates
+//! ([`Adaptive`]) or on those of one box with a static filter first ([`BoxFilter2d`]).
 
 use std::cmp::Ordering;
 
 use num_bigint::BigInt;
 use num_traits::Float;
 
-use crate::predicates::{incircle, orient2d, Sign};
+use crate::predicates::{incircle, orient2d, BoxFilter2d, Sign};
 
 /// Sums of products smaller than this may have lost bits to underflow: the filter defers.
 const UNDERFLOW_GUARD: f64 = 1e-280;
@@ -28,18 +27,6 @@ const UNDERFLOW_GUARD: f64 = 1e-280;
 /// products carries at most `3u` relative error (`u = 2^-53`: two rounded differences and the
 /// product), the sum one more `u`; `8u = 4 * EPSILON` covers it with room to spare.
 const DOT_ERROR: f64 = 4.0 * f64::EPSILON;
-
-/// First-order error coefficients of the floating-point `orient2d` and `incircle`
-/// determinants evaluated as in `crate::predicates` (its `filter.rs` derives them: `8u` and
-/// `128u` times the product of the largest translated coordinates, `u = 2^-53`), with the same
-/// relative slack for the higher-order terms and the rounding of the bound.
-const ORIENT2D_ERROR: f64 = 8.0 * (f64::EPSILON / 2.0) * (1.0 + 1e-12);
-const INCIRCLE_ERROR: f64 = 128.0 * (f64::EPSILON / 2.0) * (1.0 + 1e-12);
-
-/// Box extents within which the bounds hold (`filter.rs`: `[1e-144, 1e150]` for orient2d,
-/// `[1e-72, 1e75]` for incircle): the bounds stay normal numbers and nothing overflows.
-const ORIENT2D_RANGE: [f64; 2] = [1e-144, 1e150];
-const INCIRCLE_RANGE: [f64; 2] = [1e-72, 1e75];
 
 /// The predicates the conflict test needs: `orient2d` and [`incircle_sos`], both exact.
 pub trait Predicates2d {
@@ -63,81 +50,15 @@ impl Predicates2d for Adaptive {
     }
 }
 
-/// Static filters for the points of one box: every difference of two coordinates of points
-/// in the box is at most the box's extent along that axis once rounded (rounding is
-/// monotone), and the error bounds grow with those differences, so the bounds taken at the
-/// extents hold for every call. A call evaluates its determinant in the order the bounds were
-/// derived for and compares it with the fixed bound; only the calls it cannot decide go to the
-/// crate's predicates (which filter again with their own, tighter, bound). The decisions are
-/// the exact ones either way. Outside the range of the bounds they are infinite and never
-/// decide; inside it the bounds are normal numbers, far above what products that underflow
-/// can lose (the argument of `filter.rs`, which holds for the box's bound as for a call's).
-#[derive(Clone, Copy, Debug)]
-pub struct BoxFilter2d {
-    orient2d: f64,
-    incircle: f64,
-}
-
-impl BoxFilter2d {
-    /// For points with `lo <= p <= hi` coordinate-wise.
-    pub fn new(lo: [f64; 2], hi: [f64; 2]) -> Self {
-        let [ex, ey] = [hi[0] - lo[0], hi[1] - lo[1]];
-        let (smallest, largest) = (ex.min(ey), ex.max(ey));
-        let bound = |[lower, upper]: [f64; 2], error: f64| {
-            if lower <= smallest && largest <= upper {
-                error
-            } else {
-                f64::INFINITY
-            }
-        };
-        BoxFilter2d {
-            orient2d: bound(ORIENT2D_RANGE, ORIENT2D_ERROR * ex * ey),
-            incircle: bound(INCIRCLE_RANGE, INCIRCLE_ERROR * ex * ey * largest * largest),
-        }
-    }
-}
-
-/// The sign of `det` when its error bound `eps` certifies it.
-#[inline]
-fn certified(det: f64, eps: f64) -> Option<Sign> {
-    if det > eps {
-        Some(Sign::Positive)
-    } else if det < -eps {
-        Some(Sign::Negative)
-    } else {
-        None
-    }
-}
-
 impl Predicates2d for BoxFilter2d {
-    /// `orient2d` of points of the box: `bx*cy - by*cx` on `b - a, c - a`.
     #[inline]
     fn orient2d(&self, a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Sign {
-        let (bx, by) = (b[0] - a[0], b[1] - a[1]);
-        let (cx, cy) = (c[0] - a[0], c[1] - a[1]);
-        certified(bx * cy - cx * by, self.orient2d).unwrap_or_else(|| orient2d(a, b, c))
+        BoxFilter2d::orient2d(self, a, b, c)
     }
 
-    /// [`incircle_sos`] of points of the box: `(la*bc - lb*ac) + lc*ab` on `a - d, b - d,
-    /// c - d`, `l = x*x + y*y` and `bc = bx*cy - cx*by` and so on.
     #[inline]
     fn incircle_sos(&self, a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Sign {
-        let (ax, ay) = (a[0] - d[0], a[1] - d[1]);
-        let (bx, by) = (b[0] - d[0], b[1] - d[1]);
-        let (cx, cy) = (c[0] - d[0], c[1] - d[1]);
-        let (la, lb, lc) = (ax * ax + ay * ay, bx * bx + by * by, cx * cx + cy * cy);
-        let (bc, ac, ab) = (bx * cy - cx * by, ax * cy - cx * ay, ax * by - bx * ay);
-        let det = (la * bc - lb * ac) + lc * ab;
-        // The sign as a value, not a branch: it is unpredictable, the certification is not.
-        if det.abs() > self.incircle {
-            if det > 0.0 {
-                Sign::Positive
-            } else {
-                Sign::Negative
-            }
-        } else {
-            incircle_sos(a, b, c, d)
-        }
+        self.incircle_or([a, b, c, d], || incircle_sos(a, b, c, d))
     }
 }
 

@@ -340,6 +340,61 @@ impl BoxBounds {
     }
 }
 
+/// [`BoxBounds`] for planar points: the bounds of [`orient2d`] and [`incircle`] taken at the
+/// box's extents, for the same determinants evaluated in the same order.
+#[derive(Clone, Copy, Debug)]
+pub struct BoxBounds2d {
+    orient2d: f64,
+    incircle: f64,
+}
+
+impl BoxBounds2d {
+    pub fn new(lo: &[f64; 2], hi: &[f64; 2]) -> Self {
+        let m: [f64; 2] = std::array::from_fn(|k| hi[k] - lo[k]);
+        let (smallest, largest) = extremes(&m);
+        let bound = |b: &Bound, unit: f64| {
+            if b.lower <= smallest && largest <= b.upper {
+                b.coefficient * unit
+            } else {
+                f64::INFINITY
+            }
+        };
+        BoxBounds2d {
+            orient2d: bound(&ORIENT2D, m[0] * m[1]),
+            incircle: bound(&INCIRCLE, m[0] * m[1] * largest * largest),
+        }
+    }
+
+    /// [`orient2d`] decided by the box's bound alone.
+    #[inline]
+    pub fn orient2d(&self, a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Option<Sign> {
+        certify(minor(&diff::<2>(b, a), &diff::<2>(c, a)), self.orient2d)
+    }
+
+    /// [`incircle`] decided by the box's bound, else `fallback()`. The sign is taken as a
+    /// value, not a branch: it is unpredictable in a Delaunay cavity search, the certification
+    /// is not.
+    #[inline]
+    pub fn incircle_or(
+        &self,
+        [a, b, c, d]: [&[f64; 2]; 4],
+        fallback: impl FnOnce() -> Sign,
+    ) -> Sign {
+        let rows = [diff::<2>(a, d), diff::<2>(b, d), diff::<2>(c, d)];
+        let lifts = rows.map(|r| r[0] * r[0] + r[1] * r[1]);
+        let det = lifted_det3(&rows, &lifts);
+        if det.abs() > self.incircle {
+            if det > 0.0 {
+                Sign::Positive
+            } else {
+                Sign::Negative
+            }
+        } else {
+            fallback()
+        }
+    }
+}
+
 #[inline]
 fn certify(det: f64, eps: f64) -> Option<Sign> {
     if det > eps {

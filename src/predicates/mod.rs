@@ -165,6 +165,33 @@ impl BoxFilter {
     }
 }
 
+/// The planar predicates of points that all lie in one box: a first filter whose bound is
+/// fixed by the box, then [`orient2d`] / the caller's in-circle test.
+#[derive(Clone, Copy, Debug)]
+pub struct BoxFilter2d(filter::BoxBounds2d);
+
+impl BoxFilter2d {
+    /// For points with `lo <= p <= hi` coordinate-wise.
+    pub fn new(lo: &[f64; 2], hi: &[f64; 2]) -> Self {
+        BoxFilter2d(filter::BoxBounds2d::new(lo, hi))
+    }
+
+    /// [`orient2d`] of points of the box.
+    #[inline]
+    pub fn orient2d(&self, a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Sign {
+        self.0
+            .orient2d(a, b, c)
+            .unwrap_or_else(|| orient2d(a, b, c))
+    }
+
+    /// The sign of [`incircle`] of points of the box when the box's bound decides it, else
+    /// `fallback()` (the caller's exact test, with its tie-breaking).
+    #[inline]
+    pub fn incircle_or(&self, points: [&[f64; 2]; 4], fallback: impl FnOnce() -> Sign) -> Sign {
+        self.0.incircle_or(points, fallback)
+    }
+}
+
 /// [`insphere`] with ties broken by the symbolic perturbation: never `Zero`.
 ///
 /// Precondition: `(a,b,c,d)` is positively oriented and the five points are distinct.
