@@ -83,12 +83,11 @@ fn sides(mesh: &mut TetMesh, f: [u32; 3]) -> Result<(u32, u32)> {
         .find_face(f)
         .ok_or_else(|| Error::internal(format!("input triangle {f:?} is not a facet")))?;
     let n = mesh.tets.neighbor(t, i);
-    let stored = mesh.facet(t, i);
-    // The apex of t sees `stored` counter-clockwise: t is in front of `stored`, and in front of
-    // `f` iff `f` is an even rotation of `stored`.
-    let r = stored.iter().position(|&x| x == f[0]).unwrap_or(0);
-    let same = stored[(r + 1) % 3] == f[1];
-    Ok(if same { (t, n) } else { (n, t) })
+    Ok(if mesh.in_front(t, i, f) {
+        (t, n)
+    } else {
+        (n, t)
+    })
 }
 
 /// Labels of the components: numbered by smallest bounding triangle (front side first), then

@@ -97,14 +97,6 @@ fn patch(mesh: &TetMesh, part: &Partition, face: usize, p: u32) -> Result<Patch>
     Ok(Patch { face, old, new })
 }
 
-/// Whether tetrahedron `t` lies in front of (on the right-hand normal side of) its facet
-/// `k`, given as the oriented triangle `s`.
-fn in_front(mesh: &TetMesh, t: u32, k: usize, s: [u32; 3]) -> bool {
-    let stored = mesh.facet(t, k);
-    let r = stored.iter().position(|&x| x == s[0]).unwrap_or(0);
-    stored[(r + 1) % 3] == s[1]
-}
-
 /// Moves point `p` off the surface.
 fn suppress(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32) -> Result<()> {
     let faces = part.faces_of(p);
@@ -252,7 +244,7 @@ fn bounding_sides(
                 continue;
             }
             if let Some(&(j, s)) = separators.get(&key(mesh.facet(t, i))) {
-                let side = (j, in_front(mesh, t, i, s));
+                let side = (j, mesh.in_front(t, i, s));
                 if !sides.contains(&side) {
                     sides.push(side);
                 }

@@ -201,6 +201,15 @@ impl TetMesh {
         FACE[i].map(|k| v[k])
     }
 
+    /// Whether `t` lies in front of (on the right-hand normal side of) its facet `i`, given
+    /// as the oriented triangle `s`: the apex of `t` sees its stored facet counter-clockwise,
+    /// so `t` is in front of `s` iff `s` is an even rotation of it.
+    pub fn in_front(&self, t: u32, i: usize, s: [u32; 3]) -> bool {
+        let stored = self.facet(t, i);
+        let r = stored.iter().position(|&x| x == s[0]).unwrap_or(0);
+        stored[(r + 1) % 3] == s[1]
+    }
+
     /// `(apex, [x, y, z])` with `apex` the vertex `i` of `t` and `(apex, x, y, z)` positively
     /// oriented (an even permutation of the stored order).
     pub fn with_apex(&self, t: u32, i: usize) -> (u32, [u32; 3]) {
