@@ -395,3 +395,117 @@ fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
         "{flipped} flips, {removed} removals"
     );
 }
+
+/// Circumradius over shortest edge, and volume, of a tetrahedron.
+fn shape(p: [[f64; 3]; 4]) -> (f64, f64) {
+    let c = delmesh::geometry::circumcenter([&p[0], &p[1], &p[2], &p[3]]);
+    let d = |a: [f64; 3], b: [f64; 3]| (0..3).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
+    let mut shortest = f64::INFINITY;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            shortest = shortest.min(d(p[i], p[j]));
+        }
+    }
+    (d(c, p[0]) / shortest, volume6(p) / 6.0)
+}
+
+#[test]
+fn volume_bound_refines_a_cube_with_interior_points_only() {
+    let (xyz, tris) = cube();
+    let options = SurfaceOptions {
+        max_volume: 0.01,
+        ..SurfaceOptions::default()
+    };
+    let mesh = tetrahedralize_surface(&xyz, &tris, &options).unwrap();
+    let steiner = check(&xyz, &tris, &mesh);
+    // At least 100 tetrahedra of volume <= 0.01 fill the unit cube.
+    assert!(mesh.tetrahedron_count() >= 100 && steiner > 0);
+    for t in mesh.tetrahedra.chunks_exact(4) {
+        let (_, volume) = shape([0, 1, 2, 3].map(|k| mesh.vertex(t[k])));
+        assert!(volume <= 0.01, "tetrahedron {t:?} has volume {volume}");
+    }
+    for v in 8..mesh.vertex_count() as u32 {
+        let p = mesh.vertex(v);
+        assert!(
+            p.iter().all(|&x| x > 0.0 && x < 1.0),
+            "Steiner point {v} {p:?} is not strictly inside the cube"
+        );
+        assert_eq!(mesh.vertex_dimensions[v as usize], 3);
+    }
+    let again = tetrahedralize_surface(&xyz, &tris, &options).unwrap();
+    assert_eq!(mesh, again, "two runs differ");
+}
+
+#[test]
+fn ratio_bound_holds_away_from_the_surface_on_a_fine_sphere() {
+    // Octahedron subdivided 4 times onto the unit sphere: 512 triangles.
+    let mut xyz: Vec<f64> = vec![
+        1., 0., 0., -1., 0., 0., 0., 1., 0., 0., -1., 0., 0., 0., 1., 0., 0., -1.,
+    ];
+    let mut tris: Vec<u32> = vec![
+        0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5,
+    ];
+    for _ in 0..3 {
+        let mut middle: HashMap<[u32; 2], u32> = HashMap::new();
+        let mut next = Vec::new();
+        for f in tris.chunks_exact(3) {
+            let m = [0, 1, 2].map(|k| {
+                let (a, b) = (f[k].min(f[(k + 1) % 3]), f[k].max(f[(k + 1) % 3]));
+                *middle.entry([a, b]).or_insert_with(|| {
+                    let p = [0, 1, 2].map(|c| xyz[3 * a as usize + c] + xyz[3 * b as usize + c]);
+                    let l = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+                    xyz.extend(p.map(|x| x / l));
+                    (xyz.len() / 3 - 1) as u32
+                })
+            });
+            next.extend_from_slice(&[
+                f[0], m[0], m[2], m[0], f[1], m[1], m[2], m[1], f[2], m[0], m[1], m[2],
+            ]);
+        }
+        tris = next;
+    }
+    let options = SurfaceOptions {
+        max_radius_edge_ratio: 1.414,
+        ..SurfaceOptions::default()
+    };
+    let mesh = tetrahedralize_surface(&xyz, &tris, &options).unwrap();
+    let steiner = check(&xyz, &tris, &mesh);
+    assert!(steiner > 0, "the sphere's interior needs points");
+    // Away from the surface (circumcenter deeper than the surface's edge length, 0.2), the
+    // bound holds: only the surface forces bad tetrahedra.
+    let n = xyz.len() / 3;
+    let mut deep = 0;
+    for t in mesh.tetrahedra.chunks_exact(4) {
+        let p = [0, 1, 2, 3].map(|k| mesh.vertex(t[k]));
+        let (ratio, _) = shape(p);
+        let c = delmesh::geometry::circumcenter([&p[0], &p[1], &p[2], &p[3]]);
+        let radius = (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt();
+        if t.iter().all(|&v| v as usize >= n) && radius < 0.6 {
+            deep += 1;
+            assert!(
+                ratio <= 1.414,
+                "interior tetrahedron {t:?} has ratio {ratio}"
+            );
+        }
+    }
+    assert!(deep > 0, "no tetrahedron deep inside");
+}
+
+#[test]
+fn refinement_options_are_checked() {
+    let (xyz, tris) = cube();
+    for (ratio, volume) in [
+        (0.9, 0.0),
+        (f64::NAN, 0.0),
+        (0.0, -1.0),
+        (0.0, f64::INFINITY),
+    ] {
+        let options = SurfaceOptions {
+            max_radius_edge_ratio: ratio,
+            max_volume: volume,
+            ..SurfaceOptions::default()
+        };
+        let e = tetrahedralize_surface(&xyz, &tris, &options).unwrap_err();
+        assert_eq!(e.kind, ErrorKind::InvalidArgument, "{e}");
+    }
+}

@@ -271,6 +271,94 @@ static size_t label_index(const int32_t *sorted, size_t count, int32_t label) {
   return lo < count && sorted[lo] == label ? lo : count;
 }
 
+/* The circumcenter of tetrahedron abcd (long double arithmetic); 0 when it is flat. */
+static int circumcenter(const double *a, const double *b, const double *c, const double *d, double out[3]) {
+  long double u[3], v[3], w[3], vw[3], wu[3], uv[3];
+  for (int k = 0; k < 3; k++) u[k] = (long double)b[k] - a[k], v[k] = (long double)c[k] - a[k], w[k] = (long double)d[k] - a[k];
+  for (int k = 0; k < 3; k++) {
+    int i = (k + 1) % 3, j = (k + 2) % 3;
+    vw[k] = v[i] * w[j] - v[j] * w[i];
+    wu[k] = w[i] * u[j] - w[j] * u[i];
+    uv[k] = u[i] * v[j] - u[j] * v[i];
+  }
+  long double det = 2 * (u[0] * vw[0] + u[1] * vw[1] + u[2] * vw[2]);
+  if (det == 0) return 0;
+  long double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2],
+              ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+  for (int k = 0; k < 3; k++) out[k] = (double)(a[k] + (uu * vw[k] + vv * wu[k] + ww * uv[k]) / det);
+  return 1;
+}
+
+static long double distance2(const double *p, const double *q) {
+  long double s = 0;
+  for (int k = 0; k < 3; k++) s += ((long double)p[k] - q[k]) * ((long double)p[k] - q[k]);
+  return s;
+}
+
+/* Whether p lies in the diametral ball of segment ab or of triangle abc (the ball whose
+ * equator is its circumcircle), with the relative allowance. */
+static int in_diametral_ball(const double *a, const double *b, const double *c, const double *p) {
+  const double *e[3][2] = {{a, b}, {b, c}, {c, a}};
+  for (int i = 0; i < 3; i++) {
+    long double m[3];
+    for (int k = 0; k < 3; k++) m[k] = ((long double)e[i][0][k] + e[i][1][k]) / 2;
+    long double d = 0;
+    for (int k = 0; k < 3; k++) d += (p[k] - m[k]) * (p[k] - m[k]);
+    if (d <= distance2(e[i][0], e[i][1]) / 4 * (1 + SURFACE_QUALITY_ROUNDING)) return 1;
+  }
+  /* Circumcenter of the triangle: a + (|v|^2 (u x v) x u + |u|^2 v x (u x v)) / (2 |u x v|^2). */
+  long double u[3], v[3], n[3], x[3], y[3];
+  for (int k = 0; k < 3; k++) u[k] = (long double)b[k] - a[k], v[k] = (long double)c[k] - a[k];
+  for (int k = 0; k < 3; k++) n[k] = u[(k + 1) % 3] * v[(k + 2) % 3] - u[(k + 2) % 3] * v[(k + 1) % 3];
+  for (int k = 0; k < 3; k++) {
+    x[k] = n[(k + 1) % 3] * u[(k + 2) % 3] - n[(k + 2) % 3] * u[(k + 1) % 3];
+    y[k] = v[(k + 1) % 3] * n[(k + 2) % 3] - v[(k + 2) % 3] * n[(k + 1) % 3];
+  }
+  long double nn = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+  long double uu = u[0] * u[0] + u[1] * u[1] + u[2] * u[2], vv = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  if (nn == 0) return 0;
+  long double center[3], r2 = 0, d2 = 0;
+  for (int k = 0; k < 3; k++) center[k] = a[k] + (vv * x[k] + uu * y[k]) / (2 * nn);
+  for (int k = 0; k < 3; k++) r2 += (a[k] - center[k]) * (a[k] - center[k]), d2 += (p[k] - center[k]) * (p[k] - center[k]);
+  return d2 <= r2 * (1 + SURFACE_QUALITY_ROUNDING);
+}
+
+/* Whether refinement that keeps the surface whole must decline point p for a tetrahedron of
+ * label `label` (surface_check.h): diametral balls, protecting balls (`shortest`: per vertex
+ * its shortest surface edge, 0 off the surface), beyond the surface. */
+static int forced_by_surface(const SurfaceInput *in, const SurfaceResult *r, const double *shortest, int32_t label,
+                             const double *p) {
+  for (size_t t = 0; t < in->m; t++) {
+    const uint32_t *f = in->tris + 3 * t;
+    if (in_diametral_ball(point(r->xyz, f[0]), point(r->xyz, f[1]), point(r->xyz, f[2]), p)) return 1;
+  }
+  for (size_t v = 0; v < in->n; v++)
+    if (shortest[v] > 0 && distance2(p, point(r->xyz, (uint32_t)v)) <=
+                               (long double)shortest[v] * shortest[v] * (1 + SURFACE_QUALITY_ROUNDING))
+      return 1;
+  for (size_t t = 0; t < r->tet_count; t++) {
+    const uint32_t *q = r->tets + 4 * t;
+    if (r->labels[t] == label &&
+        inside_tetrahedron(point(r->xyz, q[0]), point(r->xyz, q[1]), point(r->xyz, q[2]), point(r->xyz, q[3]), p))
+      return 0;
+  }
+  return 1;
+}
+
+/* Per input vertex, its shortest surface edge (0 for a vertex no triangle uses). */
+static double *shortest_surface_edges(const SurfaceInput *in) {
+  double *shortest = calloc(in->n ? in->n : 1, sizeof *shortest);
+  if (!shortest) return NULL;
+  for (size_t t = 0; t < 3 * in->m; t++) {
+    uint32_t a = in->tris[t], b = in->tris[t - t % 3 + (t + 1) % 3];
+    if (a >= in->n || b >= in->n) continue;
+    double l = sqrt((double)distance2(point(in->xyz, a), point(in->xyz, b)));
+    if (shortest[a] == 0 || l < shortest[a]) shortest[a] = l;
+    if (shortest[b] == 0 || l < shortest[b]) shortest[b] = l;
+  }
+  return shortest;
+}
+
 int surface_check(const SurfaceInput *in, const SurfaceResult *r, double radius_edge_bound, SurfaceReport *out) {
   memset(out, 0, sizeof *out);
   out->first_surface_steiner = -1;
@@ -440,6 +528,11 @@ int surface_check(const SurfaceInput *in, const SurfaceResult *r, double radius_
   }
 
   /* Quality. */
+  double *shortest = NULL;
+  if (ok && radius_edge_bound > 0) {
+    shortest = shortest_surface_edges(in);
+    ok = shortest != NULL;
+  }
   if (ok && radius_edge_bound > 0) {
     out->max_radius_edge = 0;
     for (size_t t = 0; t < nt; t++) {
@@ -453,10 +546,14 @@ int surface_check(const SurfaceInput *in, const SurfaceResult *r, double radius_
         out->above_radius_edge++;
         out->above_with_3_surface += on >= 3;
         out->above_with_4_surface += on == 4;
+        double c[3];
+        if (on < 3 && circumcenter(point(r->xyz, q[0]), point(r->xyz, q[1]), point(r->xyz, q[2]), point(r->xyz, q[3]), c))
+          out->above_forced += forced_by_surface(in, r, shortest, r->labels[t], c);
       }
     }
   }
   grid_free(&grid);
+  free(shortest);
   free(expect);
   free(on_surface_vertex);
   free(faces);
@@ -472,7 +569,7 @@ int surface_report_ok(const SurfaceReport *r, int expected_regions, int quality,
          r->volume_error <= SURFACE_VOLUME_TOLERANCE && (expected_regions <= 0 || r->regions == expected_regions) &&
          r->seeds_wrong == 0 && r->holes_covered == 0 && (!volume_bounds || r->above_max_volume == 0) &&
          r->surface_steiner == 0 &&
-         (!quality || r->above_radius_edge == r->above_with_3_surface);
+         (!quality || r->above_radius_edge == r->above_with_3_surface + r->above_forced);
 }
 
 void surface_report_describe(const SurfaceReport *r, int expected_regions, int quality, char *buffer, size_t size) {
@@ -496,16 +593,18 @@ void surface_report_describe(const SurfaceReport *r, int expected_regions, int q
   if (r->holes_covered) ADD("%zu hole seeds inside a tetrahedron; ", r->holes_covered);
   if (r->above_max_volume) ADD("%zu tetrahedra above their region's max volume; ", r->above_max_volume);
   if (r->surface_steiner) ADD("%zu Steiner points on the surface (first: vertex %ld); ", r->surface_steiner, r->first_surface_steiner);
-  if (quality && r->above_radius_edge != r->above_with_3_surface)
-    ADD("%zu tetrahedra above the radius-edge bound with < 3 surface vertices; ", r->above_radius_edge - r->above_with_3_surface);
+  if (quality && r->above_radius_edge != r->above_with_3_surface + r->above_forced)
+    ADD("%zu tetrahedra above the radius-edge bound with < 3 surface vertices that the surface does not force; ",
+        r->above_radius_edge - r->above_with_3_surface - r->above_forced);
   if (len == 0) ADD("ok: ");
   /* Figures. */
   ADD("%s, %zu Steiner, %d region%s, volume error %.1e (bound %.1e)", r->valid ? "valid" : "invalid", r->steiner,
       r->regions, r->regions == 1 ? "" : "s", r->volume_error, r->volume_error_bound);
   if (r->facets_checked) ADD(", facets = input");
   if (quality)
-    ADD(", max radius-edge %.3f, %zu above the bound (%zu with >= 3, %zu with 4 surface vertices)", r->max_radius_edge,
-        r->above_radius_edge, r->above_with_3_surface, r->above_with_4_surface);
+    ADD(", max radius-edge %.3f, %zu above the bound (%zu with >= 3, %zu with 4 surface vertices, %zu with < 3 forced "
+        "by the surface)",
+        r->max_radius_edge, r->above_radius_edge, r->above_with_3_surface, r->above_with_4_surface, r->above_forced);
 #undef ADD
 }
 

@@ -18,7 +18,15 @@
  * - Steiner points (vertices >= n): none on a surface triangle (exactly: coplanar with it and
  *   inside it, closed), found through a bucket grid of the triangles' bounding boxes;
  * - quality (when a radius-edge bound is given): the tetrahedra above it (1e-9 relative
- *   allowance for the double-precision figure), and how many vertices on the surface each has.
+ *   allowance for the double-precision figure), how many vertices on the surface each has, and
+ *   for those with fewer than 3, whether the surface forces them: refinement that keeps every
+ *   surface triangle whole must decline their circumcenter, which lies
+ *   - in the diametral ball of a surface triangle or edge (it would encroach it),
+ *   - within the protecting ball of a surface vertex, radius its shortest surface edge (an
+ *     upper bound of the local feature size TetGen -Y and delmesh use: the distance to the
+ *     nearest vertex, edge or triangle of the vertex's link), or
+ *   - beyond the surface: in no tetrahedron of the same label (exact location);
+ *   distances with the same 1e-9 relative allowance.
  *
  * "Surface triangles" are the input triangles, or for a polygonal input the triangles that
  * cover its polygons (surface_check_polygons checks that cover). */
@@ -74,6 +82,7 @@ typedef struct SurfaceReport {
   size_t above_radius_edge;     /* tetrahedra above the bound */
   size_t above_with_3_surface;  /* of which with >= 3 vertices on the surface */
   size_t above_with_4_surface;  /* of which with 4 */
+  size_t above_forced;          /* of those with < 3, the ones the surface forces (see above) */
 } SurfaceReport;
 
 /* Every figure of `r` against `in`; `radius_edge_bound` 0 skips the quality figures. Returns 0
@@ -88,7 +97,7 @@ int surface_check(const SurfaceInput *in, const SurfaceResult *r, double radius_
 
 /* Checks that pass, as the tests assert them: valid, conforming, facets (when checked),
  * volume, regions and seeds, no Steiner point on the surface; `quality` adds "every tetrahedron
- * above the radius-edge bound has >= 3 surface vertices", `volume_bounds` "no tetrahedron above
+ * above the radius-edge bound has >= 3 surface vertices or is forced by the surface", `volume_bounds` "no tetrahedron above
  * its region seed's max volume". */
 int surface_report_ok(const SurfaceReport *r, int expected_regions, int quality, int volume_bounds);
 

@@ -22,27 +22,44 @@ use crate::triangulation::tets::{FACE, INFINITE};
 /// Component id of the outside.
 const OUTSIDE: u32 = 0;
 
-/// The label of every component (0 = dropped) and the component of every tetrahedron slot.
-struct Regions {
-    component: Vec<u32>,
-    label: Vec<i32>,
+/// The regions of the mesh: the component of every tetrahedron slot, and per component its
+/// label (0 = dropped: the outside and holes) and volume bound (0 = none).
+pub struct Regions {
+    pub component: Vec<u32>,
+    pub label: Vec<i32>,
+    pub max_volume: Vec<f64>,
 }
 
-/// The mesh of the kept regions, with the input triangles as facets.
-pub fn output(
+impl Regions {
+    /// Whether tetrahedron `t` is in a kept region.
+    pub fn kept(&self, t: u32) -> bool {
+        self.label[self.component[t as usize] as usize] != 0
+    }
+
+    /// Puts the new tetrahedra `created` in component `c`.
+    pub fn assign(&mut self, created: &[u32], c: u32) {
+        for &t in created {
+            if self.component.len() <= t as usize {
+                self.component.resize(t as usize + 1, u32::MAX);
+            }
+            self.component[t as usize] = c;
+        }
+    }
+}
+
+/// The regions of the recovered mesh, labelled and bounded by `options`.
+pub fn regions(
     mesh: &mut TetMesh,
-    n_input: usize,
     triangles: &[[u32; 3]],
     options: &SurfaceOptions,
-) -> Result<Mesh> {
+) -> Result<Regions> {
     let input: HashMap<Key, usize> = triangles
         .iter()
         .enumerate()
         .map(|(k, &f)| (key(f), k))
         .collect();
     let component = components(mesh, &input);
-    let regions = label(mesh, &input, component, triangles, options)?;
-    assemble(mesh, n_input, triangles, &regions)
+    label(mesh, &input, component, triangles, options)
 }
 
 /// Connected components across non-input facets; the infinite tetrahedra's is [`OUTSIDE`].
@@ -105,6 +122,7 @@ fn label(
         .max()
         .map_or(0, |&c| c + 1);
     let mut label = vec![0i32; count as usize];
+    let mut max_volume = vec![options.max_volume; count as usize];
     let mut next = 1 + options
         .regions
         .iter()
@@ -131,12 +149,19 @@ fn label(
             )));
         }
         label[c as usize] = seed.label;
+        if seed.max_volume > 0.0 {
+            max_volume[c as usize] = seed.max_volume;
+        }
     }
     for &h in &options.holes {
         let c = seed_component(mesh, input, &component, h, "hole")?;
         label[c as usize] = 0;
     }
-    Ok(Regions { component, label })
+    Ok(Regions {
+        component,
+        label,
+        max_volume,
+    })
 }
 
 /// The component of a tetrahedron whose closure holds `p` (exact tests); a point on an input
@@ -177,8 +202,8 @@ fn seed_component(
     )))
 }
 
-/// The output arrays.
-fn assemble(
+/// The output arrays: the mesh of the kept regions, with the input triangles as facets.
+pub fn assemble(
     mesh: &mut TetMesh,
     n_input: usize,
     triangles: &[[u32; 3]],

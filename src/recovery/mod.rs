@@ -7,8 +7,11 @@
 //! 2. The Delaunay triangulation of the surface vertices and of the corners of an enlarged
 //!    bounding box (§5.1), so that no input triangle lies on the convex hull.
 //! 3. Missing edges, then missing triangles, are recovered (§5.2).
-//! 4. Regions are found by flood fill from the box across non-input facets; the box region
+//! 4. Points added on the surface are moved off it or merged away (§5.3, [`suppress`]).
+//! 5. Regions are found by flood fill from the box across non-input facets; the box region
 //!    is dropped (§5.3, last remark).
+//! 6. Optional quality refinement with interior points only ([`refine`]: radius-edge and
+//!    volume bounds, TetGen's `-q`/`-a` with `-Y`).
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
@@ -20,6 +23,7 @@ pub mod edges;
 pub mod faces;
 pub mod flips;
 pub mod partition;
+mod refine;
 pub mod steiner;
 pub mod suppress;
 pub mod tetmesh;
@@ -91,7 +95,17 @@ pub fn tetrahedralize_surface(
     let normals: Vec<Point> = tris.iter().map(|f| unit_normal(points, *f)).collect();
     suppress::suppress_all(&mut mesh, &mut part, &normals)?;
     suppress::merge_interior(&mut mesh, points.len() as u32 + 8)?;
-    classify::output(&mut mesh, points.len(), tris, options)
+    let mut regions = classify::regions(&mut mesh, tris, options)?;
+    if options.max_radius_edge_ratio > 0.0 || regions.max_volume.iter().any(|&v| v > 0.0) {
+        refine::refine(
+            &mut mesh,
+            &part.protected,
+            &mut regions,
+            options.max_radius_edge_ratio,
+            points.len() as u32,
+        )?;
+    }
+    classify::assemble(&mut mesh, points.len(), tris, &regions)
 }
 
 /// Recovers every subface (§5.2): sub-edges first, then subfaces, by flips; where flips
@@ -190,18 +204,33 @@ fn until_stable<T>(
     }
 }
 
-/// Options this version cannot honour yet.
+/// Checks the options: bounds finite and meaningful, and nothing this version cannot honour.
 fn check_options(options: &SurfaceOptions) -> Result<()> {
     if options.keep_convex_hull {
         return Err(Error::invalid_argument(
             "keep_convex_hull is not supported yet",
         ));
     }
-    let region_volume = options.regions.iter().any(|r| r.max_volume > 0.0);
-    if options.max_radius_edge_ratio > 0.0 || options.max_volume > 0.0 || region_volume {
-        return Err(Error::invalid_argument(
-            "quality refinement (max_radius_edge_ratio, max_volume, region volume bounds) is not supported yet",
-        ));
+    let ratio = options.max_radius_edge_ratio;
+    if !(ratio == 0.0 || ratio >= 1.2 && ratio.is_finite()) {
+        return Err(Error::invalid_argument(format!(
+            "max_radius_edge_ratio {ratio} must be 0 (no quality refinement) or finite and \
+             >= 1.2 (a regular tetrahedron has 0.61; refinement below about 1.1 does not end)"
+        )));
+    }
+    let volumes = std::iter::once(("max_volume".to_string(), options.max_volume)).chain(
+        options
+            .regions
+            .iter()
+            .enumerate()
+            .map(|(k, r)| (format!("the max_volume of region seed {k}"), r.max_volume)),
+    );
+    for (what, v) in volumes {
+        if !(v >= 0.0 && v.is_finite()) {
+            return Err(Error::invalid_argument(format!(
+                "{what} is {v}: it must be 0 (no bound) or a positive finite volume"
+            )));
+        }
     }
     Ok(())
 }

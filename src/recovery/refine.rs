@@ -1,0 +1,576 @@
+//! Quality refinement of the recovered mesh that never splits an input triangle: Shewchuk's
+//! Delaunay refinement restricted to interior points, with the rules TetGen applies when the
+//! surface must be kept (`-q`, `-a` with `-Y`).
+//!
+//! 1. The kept regions are made as Delaunay as flips allow (Lawson's flips: 2-3, and 3-2
+//!    where an edge of the facet has a shell of three), never across an input triangle.
+//! 2. A tetrahedron whose radius-edge ratio (circumradius over shortest edge) or volume is
+//!    above its bound gets its circumcenter, inserted by a Bowyer–Watson cavity that stops at
+//!    the input triangles and is shrunk until it is star-shaped from the point; Lawson's flips
+//!    follow.
+//! 3. A circumcenter is declined when it lies beyond the surface seen from its tetrahedron,
+//!    in the diametral ball of an input triangle on its cavity's boundary or of an input edge
+//!    of its cavity, or, for a ratio split, in the protecting ball of an input vertex of its
+//!    cavity: radius the distance from the vertex to the nearest vertex, input edge or input
+//!    triangle of its link (the local feature size TetGen uses). These are the tetrahedra the
+//!    input forces: they stay, and are counted.
+//! 4. A tetrahedron above its volume bound whose circumcenter is declined gets its centroid,
+//!    which only the star-shape rule can decline: volume bounds are met unless a cavity
+//!    cannot be made star-shaped.
+//!
+//! Invariants: every inserted point lies strictly inside a kept region (the cavity never
+//! crosses an input triangle and contains the tetrahedron holding the point); input
+//! triangles and edges stay facets and edges; the mesh stays valid ([`TetMesh::validate`]);
+//! new tetrahedra inherit their cavity's region.
+
+use std::collections::VecDeque;
+
+use super::classify::Regions;
+use super::flips::Protected;
+use super::tetmesh::TetMesh;
+use crate::error::{Error, ErrorKind, Result};
+use crate::geometry::{circumcenter, dist, dist2, dot, sub, tet_volume, triangle_circumcenter};
+use crate::predicates::{insphere, orient3d, Point, Sign};
+use crate::triangulation::tets::INFINITE;
+
+/// Steps of a point-location walk before it gives up.
+const WALK: usize = 1 << 16;
+
+/// Why a point is tried: the checks differ (TetGen's `qflag`).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Split {
+    /// A circumcenter for the ratio bound: every rule of the module documentation.
+    Ratio,
+    /// A circumcenter for a volume bound: protecting balls do not apply.
+    Volume,
+    /// A centroid for a volume bound: only the star-shape rule applies.
+    Centroid,
+}
+
+/// Refines the kept regions until every tetrahedron meets the bound `ratio` (0 = none) and
+/// its region's volume bound, except those whose points rule 3 declines.
+pub fn refine(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    regions: &mut Regions,
+    ratio: f64,
+    n_input: u32,
+) -> Result<()> {
+    let mut refiner = Refiner {
+        lfs: Vec::new(),
+        mesh,
+        protected,
+        regions,
+        ratio,
+        queue: VecDeque::new(),
+        flips_left: 0,
+    };
+    refiner.run(n_input)
+}
+
+struct Refiner<'a> {
+    mesh: &'a mut TetMesh,
+    protected: &'a Protected,
+    regions: &'a mut Regions,
+    ratio: f64,
+    /// Protecting-ball radius of every vertex (0 for Steiner points).
+    lfs: Vec<f64>,
+    /// Tetrahedra to check, with their vertices (a slot reused since is skipped).
+    queue: VecDeque<(u32, [u32; 4])>,
+    /// Flips Lawson's pass may still make.
+    flips_left: usize,
+}
+
+impl Refiner<'_> {
+    fn run(&mut self, n_input: u32) -> Result<()> {
+        let kept = self.kept();
+        self.flips_left = 64 * kept.len() + 1024;
+        self.lawson(kept)?;
+        self.lfs = self.protecting_radii(n_input);
+        let budget = self.point_budget();
+        for t in self.kept() {
+            self.queue.push_back((t, self.mesh.tets.vertices(t)));
+        }
+        let mut inserted = 0;
+        while let Some((t, quad)) = self.queue.pop_front() {
+            if !self.mesh.tets.is_live(t) || self.mesh.tets.vertices(t) != quad {
+                continue;
+            }
+            let Some(split) = self.badness(t) else {
+                continue;
+            };
+            if inserted == budget {
+                return Err(Error::new(
+                    ErrorKind::Limit,
+                    format!(
+                        "quality refinement stopped after {inserted} points with tetrahedra \
+                         left above their bounds"
+                    ),
+                ));
+            }
+            if self.split(t, split)? {
+                inserted += 1;
+            }
+        }
+        Ok(())
+    }
+
+    /// The live tetrahedra of the kept regions.
+    fn kept(&self) -> Vec<u32> {
+        let regions = &self.regions;
+        self.mesh.tets.live().filter(|&t| regions.kept(t)).collect()
+    }
+
+    /// At most this many points: a multiple of the mesh for the ratio bound, plus what the
+    /// volume bounds ask for.
+    fn point_budget(&self) -> usize {
+        let mut wanted = 0.0;
+        let mut count = 0usize;
+        for t in self.mesh.tets.live() {
+            if !self.regions.kept(t) {
+                continue;
+            }
+            count += 1;
+            let bound = self.regions.max_volume[self.regions.component[t as usize] as usize];
+            if bound > 0.0 {
+                wanted += self.volume(t) / bound;
+            }
+        }
+        (64.0 * count as f64 + 16.0 * wanted + 1e5).min(1e9) as usize
+    }
+
+    fn volume(&self, t: u32) -> f64 {
+        let p = self.mesh.tets.vertices(t).map(|v| *self.mesh.point(v));
+        tet_volume([&p[0], &p[1], &p[2], &p[3]]).abs()
+    }
+
+    /// What tetrahedron `t` needs: `None` when it meets its bounds.
+    fn badness(&self, t: u32) -> Option<Split> {
+        let bound = self.regions.max_volume[self.regions.component[t as usize] as usize];
+        if bound > 0.0 && self.volume(t) > bound {
+            return Some(Split::Volume);
+        }
+        (self.ratio > 0.0 && radius_edge_ratio(self.mesh, t) > self.ratio).then_some(Split::Ratio)
+    }
+
+    /// Tries the circumcenter of `t`, then for a volume bound its centroid; whether a point
+    /// went in.
+    fn split(&mut self, t: u32, split: Split) -> Result<bool> {
+        let p = self.mesh.tets.vertices(t).map(|v| *self.mesh.point(v));
+        let center = well_conditioned_circumcenter(&p);
+        if self.insert(t, center, split)? {
+            return Ok(true);
+        }
+        if split == Split::Ratio {
+            return Ok(false);
+        }
+        let centroid = [0, 1, 2].map(|k| (p[0][k] + p[1][k] + p[2][k] + p[3][k]) / 4.0);
+        self.insert(t, centroid, Split::Centroid)
+    }
+
+    /// Inserts `c`, located from tetrahedron `t`, unless a rule of the module documentation
+    /// declines it (nothing changes then).
+    fn insert(&mut self, t: u32, c: Point, split: Split) -> Result<bool> {
+        if !c.iter().all(|x| x.is_finite()) {
+            return Ok(false);
+        }
+        let Some(start) = self.locate(t, &c) else {
+            return Ok(false);
+        };
+        let mut cavity = self.cavity(start, &c);
+        if split != Split::Centroid && self.encroaches(&cavity, &c, split) {
+            return Ok(false);
+        }
+        let Some(cone) = self.star_shaped(start, &mut cavity, &c) else {
+            return Ok(false);
+        };
+        let s = self.mesh.add_point(c);
+        let cone: Vec<[u32; 4]> = cone.into_iter().map(|[a, b, d]| [a, b, d, s]).collect();
+        if !self.mesh.fits(&cavity, &cone) {
+            self.mesh.pop_point();
+            return Ok(false);
+        }
+        let component = self.regions.component[start as usize];
+        let created = self.mesh.replace(&cavity, &cone)?;
+        self.regions.assign(&created, component);
+        self.lfs.push(0.0);
+        let created = self.lawson(created)?;
+        for t in created {
+            self.queue.push_back((t, self.mesh.tets.vertices(t)));
+        }
+        Ok(true)
+    }
+
+    /// The tetrahedron of `t`'s region whose closure holds `c`, by a walk that never crosses
+    /// an input triangle; `None` when `c` is beyond one, on one, on a vertex, or the walk
+    /// does not end.
+    fn locate(&self, t: u32, c: &Point) -> Option<u32> {
+        let mut at = t;
+        'walk: for _ in 0..WALK {
+            let mut zeros = 0;
+            let mut on_surface = false;
+            for i in 0..4 {
+                let f = self.mesh.facet(at, i);
+                let [a, b, d] = f.map(|v| *self.mesh.point(v));
+                match orient3d(&a, &b, &d, c) {
+                    Sign::Negative => {
+                        if self.protected.facet(f) {
+                            return None;
+                        }
+                        at = self.mesh.tets.neighbor(at, i);
+                        continue 'walk;
+                    }
+                    Sign::Zero => {
+                        zeros += 1;
+                        on_surface |= self.protected.facet(f);
+                    }
+                    Sign::Positive => {}
+                }
+            }
+            return (zeros < 3 && !on_surface).then_some(at);
+        }
+        None
+    }
+
+    /// The tetrahedra connected to `start` across non-input facets whose circumsphere
+    /// strictly holds `c`, and `start`.
+    fn cavity(&mut self, start: u32, c: &Point) -> Vec<u32> {
+        let cavity = self.search(start, 7, |me, u, i, n| {
+            let q = me.mesh.tets.vertices(n);
+            if me.mesh.tets.mark[n as usize] == 7
+                || q.contains(&INFINITE)
+                || me.protected.facet(me.mesh.facet(u, i))
+            {
+                return false;
+            }
+            let p = q.map(|v| me.mesh.point(v));
+            insphere(p[0], p[1], p[2], p[3], c) == Sign::Positive
+        });
+        for &u in &cavity {
+            self.mesh.tets.mark[u as usize] = 0;
+        }
+        cavity
+    }
+
+    /// Breadth-first search from `start` across facets: `n`, across facet `i` of `u`, is
+    /// taken when `joins(self, u, i, n)`; taken tetrahedra are marked `mark`.
+    fn search(
+        &mut self,
+        start: u32,
+        mark: u8,
+        joins: impl Fn(&Self, u32, usize, u32) -> bool,
+    ) -> Vec<u32> {
+        let mut found = vec![start];
+        self.mesh.tets.mark[start as usize] = mark;
+        let mut k = 0;
+        while k < found.len() {
+            let u = found[k];
+            k += 1;
+            for i in 0..4 {
+                let n = self.mesh.tets.neighbor(u, i);
+                if joins(self, u, i, n) {
+                    self.mesh.tets.mark[n as usize] = mark;
+                    found.push(n);
+                }
+            }
+        }
+        found
+    }
+
+    /// Whether `c` lies in the diametral ball of an input triangle bounding the cavity or of
+    /// an input edge in it, or (ratio splits) in the protecting ball of a cavity vertex.
+    fn encroaches(&self, cavity: &[u32], c: &Point, split: Split) -> bool {
+        for &u in cavity {
+            let v = self.mesh.tets.vertices(u);
+            for i in 0..4 {
+                let f = self.mesh.facet(u, i);
+                if self.protected.facet(f) {
+                    let p = f.map(|x| self.mesh.point(x));
+                    let center = triangle_circumcenter(p);
+                    if dist2(c, &center) < dist2(p[0], &center) {
+                        return true;
+                    }
+                }
+            }
+            for i in 0..4 {
+                for j in i + 1..4 {
+                    if self.protected.edge(v[i], v[j]) {
+                        let (a, b) = (self.mesh.point(v[i]), self.mesh.point(v[j]));
+                        if dot(&sub(a, c), &sub(b, c)) < 0.0 {
+                            return true;
+                        }
+                    }
+                }
+                if split == Split::Ratio
+                    && dist(c, self.mesh.point(v[i])) <= self.lfs[v[i] as usize]
+                {
+                    return true;
+                }
+            }
+        }
+        false
+    }
+
+    /// Shrinks `cavity` (always keeping `start`) until every boundary facet sees `c` on its
+    /// positive side and every cavity vertex is on the boundary; returns the boundary facets,
+    /// or `None` when `start` itself would have to go.
+    fn star_shaped(
+        &mut self,
+        start: u32,
+        cavity: &mut Vec<u32>,
+        c: &Point,
+    ) -> Option<Vec<[u32; 3]>> {
+        loop {
+            for &u in cavity.iter() {
+                self.mesh.tets.mark[u as usize] = 7;
+            }
+            let mut facets = Vec::new();
+            let mut blocked = Vec::new();
+            for &u in cavity.iter() {
+                for i in 0..4 {
+                    if self.mesh.tets.mark[self.mesh.tets.neighbor(u, i) as usize] == 7 {
+                        continue;
+                    }
+                    let f = self.mesh.facet(u, i);
+                    let [a, b, d] = f.map(|v| *self.mesh.point(v));
+                    if orient3d(&a, &b, &d, c) == Sign::Positive {
+                        facets.push(f);
+                    } else {
+                        blocked.push(u);
+                    }
+                }
+            }
+            if blocked.is_empty() {
+                for &u in cavity.iter() {
+                    self.mesh.tets.mark[u as usize] = 0;
+                }
+                let keeps_vertices = cavity.iter().all(|&u| {
+                    self.mesh
+                        .tets
+                        .vertices(u)
+                        .iter()
+                        .all(|v| facets.iter().any(|f| f.contains(v)))
+                });
+                return keeps_vertices.then_some(facets);
+            }
+            for &u in &blocked {
+                self.mesh.tets.mark[u as usize] = 0;
+            }
+            if self.mesh.tets.mark[start as usize] != 7 {
+                for &u in cavity.iter() {
+                    self.mesh.tets.mark[u as usize] = 0;
+                }
+                return None;
+            }
+            self.reachable(start, cavity);
+        }
+    }
+
+    /// Keeps the marked tetrahedra of `cavity` reachable from `start` through marked ones;
+    /// clears the marks.
+    fn reachable(&mut self, start: u32, cavity: &mut Vec<u32>) {
+        let marked = std::mem::take(cavity);
+        *cavity = self.search(start, 8, |me, _, _, n| me.mesh.tets.mark[n as usize] == 7);
+        for u in marked {
+            self.mesh.tets.mark[u as usize] = 0;
+        }
+    }
+
+    /// Lawson's flips from the tetrahedra `start`, within the kept regions and never across
+    /// an input triangle; returns the live tetrahedra among `start` and those flips made.
+    fn lawson(&mut self, start: Vec<u32>) -> Result<Vec<u32>> {
+        let mut touched = start.clone();
+        let mut stack: Vec<(u32, [u32; 4])> = start
+            .iter()
+            .map(|&t| (t, self.mesh.tets.vertices(t)))
+            .collect();
+        while let Some((t, quad)) = stack.pop() {
+            if !self.mesh.tets.is_live(t) || self.mesh.tets.vertices(t) != quad {
+                continue;
+            }
+            for i in 0..4 {
+                if self.flips_left == 0 {
+                    break;
+                }
+                if let Some(created) = self.flip_if_not_delaunay(t, i)? {
+                    self.flips_left -= 1;
+                    let component = self.regions.component[t as usize];
+                    self.regions.assign(&created, component);
+                    stack.extend(created.iter().map(|&u| (u, self.mesh.tets.vertices(u))));
+                    touched.extend_from_slice(&created);
+                    break;
+                }
+            }
+        }
+        touched.sort_unstable();
+        touched.dedup();
+        touched.retain(|&t| self.mesh.tets.is_live(t));
+        Ok(touched)
+    }
+
+    /// Flips facet `i` of `t` away (2-3, or 3-2 around one of its edges) when the apex
+    /// across it is strictly inside `t`'s circumsphere and a flip gives positive
+    /// tetrahedra; returns the new tetrahedra.
+    fn flip_if_not_delaunay(&mut self, t: u32, i: usize) -> Result<Option<Vec<u32>>> {
+        let (d, [x, y, z]) = self.mesh.with_apex(t, i);
+        let n = self.mesh.tets.neighbor(t, i);
+        if self.protected.facet([x, y, z]) || !self.regions.kept(n) {
+            return Ok(None);
+        }
+        let e = self.mesh.tets.vertices(n)[(self.mesh.tets.glued(t, i) & 3) as usize];
+        let q = self.mesh.tets.vertices(t);
+        if q.contains(&INFINITE) || e == INFINITE {
+            return Ok(None);
+        }
+        let p = q.map(|v| self.mesh.point(v));
+        if insphere(p[0], p[1], p[2], p[3], self.mesh.point(e)) != Sign::Positive {
+            return Ok(None);
+        }
+        let new = [[d, x, y, e], [d, y, z, e], [d, z, x, e]];
+        if new.iter().all(|&q| self.mesh.positive(q)) {
+            return self.mesh.replace(&[t, n], &new).map(Some);
+        }
+        for [a, b] in [[x, y], [y, z], [z, x]] {
+            if let Some(created) = self.flip32(t, a, b)? {
+                return Ok(Some(created));
+            }
+        }
+        Ok(None)
+    }
+
+    /// The 3-2 flip of edge `(a, b)` of `t` when its shell has three tetrahedra and no
+    /// input edge or triangle is lost.
+    fn flip32(&mut self, t: u32, a: u32, b: u32) -> Result<Option<Vec<u32>>> {
+        if self.protected.edge(a, b) {
+            return Ok(None);
+        }
+        let Some((shell, ring)) = self.mesh.shell(t, a, b, 3) else {
+            return Ok(None);
+        };
+        if ring.len() != 3
+            || ring.contains(&INFINITE)
+            || ring.iter().any(|&w| self.protected.facet([a, b, w]))
+            || !shell.iter().all(|&u| self.regions.kept(u))
+        {
+            return Ok(None);
+        }
+        let new = [
+            [a, ring[0], ring[1], ring[2]],
+            [b, ring[0], ring[2], ring[1]],
+        ];
+        if !new.iter().all(|&q| self.mesh.positive(q)) {
+            return Ok(None);
+        }
+        self.mesh.replace(&shell, &new).map(Some)
+    }
+
+    /// The protecting-ball radius of every input vertex (TetGen's feature size with `-Y`):
+    /// the distance to the nearest other input vertex, input edge or input triangle of its
+    /// link, the latter two only where the vertex projects inside them.
+    fn protecting_radii(&mut self, n_input: u32) -> Vec<f64> {
+        let mut lfs = vec![0.0; self.mesh.points.len()];
+        for v in 0..n_input {
+            if self.mesh.in_mesh(v) {
+                lfs[v as usize] = self.feature_size(v, n_input);
+            }
+        }
+        lfs
+    }
+
+    fn feature_size(&mut self, v: u32, n_input: u32) -> f64 {
+        let p = *self.mesh.point(v);
+        let mut size = f64::INFINITY;
+        for t in self.mesh.ball(v) {
+            let q = self.mesh.tets.vertices(t);
+            let i = q.iter().position(|&x| x == v).unwrap_or(0);
+            let f = self.mesh.facet(t, i);
+            if f.contains(&INFINITE) {
+                continue;
+            }
+            for k in 0..3 {
+                let (a, b) = (f[k], f[(k + 1) % 3]);
+                if a < n_input {
+                    size = size.min(dist(&p, self.mesh.point(a)));
+                }
+                if self.protected.edge(a, b) {
+                    size = size.min(segment_distance(&p, self.mesh.point(a), self.mesh.point(b)));
+                }
+            }
+            if self.protected.facet(f) {
+                size = size.min(triangle_distance(&p, f.map(|x| self.mesh.point(x))));
+            }
+        }
+        size
+    }
+}
+
+/// The circumcenter of tetrahedron `p`, or, when rounding leaves it undetermined (a flat
+/// tetrahedron of nearly cocircular points: its distances to the vertices differ by more than
+/// 1e-6 relative), the circumcenter of its largest face, which is what a split of it needs.
+fn well_conditioned_circumcenter(p: &[Point; 4]) -> Point {
+    let c = circumcenter([&p[0], &p[1], &p[2], &p[3]]);
+    let d = p.map(|q| dist(&c, &q));
+    let (lo, hi) = d
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
+    if hi - lo <= 1e-6 * hi {
+        return c;
+    }
+    let area = |f: [usize; 3]| {
+        let n = crate::geometry::cross(&sub(&p[f[1]], &p[f[0]]), &sub(&p[f[2]], &p[f[0]]));
+        dot(&n, &n)
+    };
+    let faces = [[1, 2, 3], [0, 2, 3], [0, 1, 3], [0, 1, 2]];
+    let largest = faces
+        .into_iter()
+        .max_by(|&a, &b| area(a).total_cmp(&area(b)))
+        .unwrap_or([0, 1, 2]);
+    triangle_circumcenter(largest.map(|k| &p[k]))
+}
+
+/// Circumradius over shortest edge of tetrahedron `t` (infinite when flat).
+fn radius_edge_ratio(mesh: &TetMesh, t: u32) -> f64 {
+    let p = mesh.tets.vertices(t).map(|v| *mesh.point(v));
+    let r = dist(&circumcenter([&p[0], &p[1], &p[2], &p[3]]), &p[0]);
+    let mut shortest = f64::INFINITY;
+    for i in 0..4 {
+        for j in i + 1..4 {
+            shortest = shortest.min(dist(&p[i], &p[j]));
+        }
+    }
+    let ratio = r / shortest;
+    if ratio.is_nan() {
+        f64::INFINITY
+    } else {
+        ratio
+    }
+}
+
+/// Distance from `p` to segment `ab` where `p` projects inside it, else infinity.
+fn segment_distance(p: &Point, a: &Point, b: &Point) -> f64 {
+    let ab = sub(b, a);
+    let s = dot(&sub(p, a), &ab) / dot(&ab, &ab);
+    if !(0.0..=1.0).contains(&s) {
+        return f64::INFINITY;
+    }
+    dist(p, &[a[0] + s * ab[0], a[1] + s * ab[1], a[2] + s * ab[2]])
+}
+
+/// Distance from `p` to the plane of triangle `t` where `p` projects inside it, else
+/// infinity.
+fn triangle_distance(p: &Point, t: [&Point; 3]) -> f64 {
+    let (u, w) = (sub(t[1], t[0]), sub(t[2], t[0]));
+    let n = crate::geometry::cross(&u, &w);
+    let nn = dot(&n, &n);
+    let h = dot(&sub(p, t[0]), &n) / nn;
+    let q = [p[0] - h * n[0], p[1] - h * n[1], p[2] - h * n[2]];
+    let inside = (0..3).all(|k| {
+        let (a, b) = (t[k], t[(k + 1) % 3]);
+        dot(&crate::geometry::cross(&sub(b, a), &sub(&q, a)), &n) >= 0.0
+    });
+    if inside {
+        h.abs() * nn.sqrt()
+    } else {
+        f64::INFINITY
+    }
+}
