@@ -22,8 +22,9 @@
 //!
 //! Invariants of a result (checked by [`validate_mesh`]): every triangle counter-clockwise
 //! (exact `orient2d > 0`) with vertex indices in range; input points first, in input order,
-//! then the intersection points of split crossing segments, then the other added points; every constraint sub-edge `Mesh::edges` is an edge of a triangle and
-//! strongly Delaunay-admissible relative to all vertices (the property tests check it again,
+//! then the intersection points of split crossing segments, then the other added points;
+//! every constraint sub-edge `Mesh::edges` is an edge of a triangle and strongly
+//! Delaunay-admissible relative to all vertices (the property tests check it again,
 //! independently).
 
 pub mod classify;
