@@ -10,13 +10,14 @@
  *   but its ends, or else an edge between two triangles that are not cocircular (Pébay's types
  *   1.0 / 1.2.0) or on the hull;
  * - every input segment the union of its sub-edges (listed in order, through added points);
- * - inserted points, ours beside CGAL's (CGAL's output must be valid too); ours must not exceed
- *   CGAL's over all cases together, and each case's figures are printed.
+ * - inserted points, ours beside CGAL's (CGAL's output must be valid too), printed: ours must
+ *   not exceed CGAL's on each case, nor over all cases together.
  *
  * Crossing segments split at their intersections (split_crossing_segments = 1: lines crossing
  * in a grid, a star through one point, random segments): the same checks, and as many
  * intersection points as CGAL's constrained triangulation with Exact_predicates_tag inserts
- * (its crossing constraints split there too); inserted points printed beside CGAL's.
+ * (its crossing constraints split there too); inserted points, these included, at most
+ * CGAL's on each case.
  *
  * Quality mode at 25 and 30 degrees, against CGAL's refine_Delaunay_mesh_2 with
  * Delaunay_mesh_size_criteria_2 at the same angle bound, on closed domains (a letter A with its
@@ -404,6 +405,7 @@ static void run_case(const Case *c) {
     check_case(cgal.valid, "%s: CGAL's conforming triangulation is valid", c->name);
     check_note("%-40s inserted points: delmesh %4zu  CGAL %4zu  (sub-edges %zu / %zu)", c->name, ours,
                theirs, delmesh_mesh_edge_count(mesh), cgal.constrained_edge_count);
+    check_case(ours <= theirs, "%s: %zu inserted points, at most CGAL's %zu", c->name, ours, theirs);
     total_ours += ours;
     total_cgal += theirs;
   }
@@ -475,6 +477,8 @@ static void run_crossing_case(const Case *c) {
                crossings, cgal.intersection_count);
     check_note("%-40s inserted points: delmesh %4zu  CGAL %4zu  (sub-edges %zu / %zu)", c->name, nv - c->n,
                cgal.vertex_count - c->n, delmesh_mesh_edge_count(mesh), cgal.constrained_edge_count);
+    check_case(nv <= cgal.vertex_count, "%s: %zu inserted points, at most CGAL's %zu", c->name, nv - c->n,
+               cgal.vertex_count - c->n);
   }
   free(table);
   delmesh_mesh_free(mesh);
