@@ -10,8 +10,14 @@
  *   but its ends, or else an edge between two triangles that are not cocircular (Pébay's types
  *   1.0 / 1.2.0) or on the hull;
  * - every input segment the union of its sub-edges (listed in order, through added points);
- * - inserted points, ours beside CGAL's (CGAL's output must be valid too); ours must not exceed
- *   CGAL's over all cases together, and each case's figures are printed.
+ * - inserted points, ours beside CGAL's (CGAL's output must be valid too), printed: ours must
+ *   not exceed CGAL's on each case, nor over all cases together.
+ *
+ * Crossing segments split at their intersections (split_crossing_segments = 1: lines crossing
+ * in a grid, a star through one point, random segments): the same checks, and as many
+ * intersection points as CGAL's constrained triangulation with Exact_predicates_tag inserts
+ * (its crossing constraints split there too); inserted points, these included, at most
+ * CGAL's on each case.
  *
  * Quality mode at 25 and 30 degrees, against CGAL's refine_Delaunay_mesh_2 with
  * Delaunay_mesh_size_criteria_2 at the same angle bound, on closed domains (a letter A with its
@@ -399,11 +405,99 @@ static void run_case(const Case *c) {
     check_case(cgal.valid, "%s: CGAL's conforming triangulation is valid", c->name);
     check_note("%-40s inserted points: delmesh %4zu  CGAL %4zu  (sub-edges %zu / %zu)", c->name, ours,
                theirs, delmesh_mesh_edge_count(mesh), cgal.constrained_edge_count);
+    check_case(ours <= theirs, "%s: %zu inserted points, at most CGAL's %zu", c->name, ours, theirs);
     total_ours += ours;
     total_cgal += theirs;
   }
   free(table);
   delmesh_mesh_free(mesh);
+}
+
+/* ---------------------------------------------------------------- crossing segments */
+
+static void make_hash(Case *c, int k) {
+  snprintf(c->name, sizeof c->name, "%d x %d crossing lines", k, k);
+  for (int i = 0; i < k; ++i) {
+    double t = 1.0 + 0.9 * i + 0.05 * (i % 3);
+    add_segment(c, add_point(c, 0.0, t), add_point(c, 1.0 + 0.9 * k, t + 0.1));
+    add_segment(c, add_point(c, t, 0.0), add_point(c, t - 0.15, 1.0 + 0.9 * k));
+  }
+}
+
+static void make_star(Case *c, int k) {
+  snprintf(c->name, sizeof c->name, "star of %d segments through one point", k);
+  for (int i = 0; i < k; ++i) {
+    double a = 0.2 + PI * i / k, r = 1.0 + 0.25 * (i % 3);
+    add_segment(c, add_point(c, r * cos(a), r * sin(a)), add_point(c, -r * cos(a), -r * sin(a)));
+  }
+}
+
+static void make_random_segments(Case *c, int k, uint64_t seed) {
+  snprintf(c->name, sizeof c->name, "%d random crossing segments", k);
+  Prng g = prng_new(seed);
+  for (int i = 0; i < k; ++i) {
+    uint32_t a = add_point(c, prng_uniform(&g), prng_uniform(&g));
+    add_segment(c, a, add_point(c, prng_uniform(&g), prng_uniform(&g)));
+  }
+}
+
+/* Split crossing segments: the checks of run_case on the result, and the intersection points
+ * (our vertices of dimension 0 past the input points) as many as CGAL's constrained
+ * triangulation with Exact_predicates_tag inserts; inserted points printed beside CGAL's. */
+static void run_crossing_case(const Case *c) {
+  DelmeshOptions2d options;
+  memset(&options, 0, sizeof options);
+  options.mode = DELMESH_MODE2D_CONFORMING;
+  options.split_crossing_segments = 1;
+  DelmeshMesh *mesh = NULL;
+  DelmeshStatus s = delmesh_triangulate_2d(c->xy, c->n, c->seg, c->m, &options, &mesh);
+  if (!check_case(s == DELMESH_OK, "%s: split and triangulated (%s)", c->name,
+                  s == DELMESH_OK ? "ok" : delmesh_last_error_message()))
+    return;
+  char why[256] = "";
+  EdgeUse *table = NULL;
+  size_t table_count = 0;
+  int valid = check_triangulation(mesh, c->n, &table, &table_count, why, sizeof why);
+  check_case(valid, "%s: valid Delaunay triangulation%s%s", c->name, valid ? "" : ": ", why);
+  if (valid) {
+    int ok = check_admissible(mesh, c->n, table, table_count, why, sizeof why);
+    check_case(ok, "%s: every sub-edge strongly Delaunay-admissible%s%s", c->name, ok ? "" : ": ", why);
+  }
+  int chained = check_union(mesh, c, why, sizeof why);
+  check_case(chained, "%s: every segment the union of its sub-edges%s%s", c->name, chained ? "" : ": ", why);
+  size_t nv = delmesh_mesh_vertex_count(mesh), crossings = 0;
+  const int8_t *dims = delmesh_mesh_vertex_dimensions(mesh);
+  while (c->n + crossings < nv && dims[c->n + crossings] == 0) crossings++;
+  RefConforming2d cgal;
+  if (ref_cgal_conforming_2d_crossing(c->xy, c->n, c->seg, c->m, &cgal) != 0) {
+    check_case(0, "%s: CGAL conforming Delaunay: %s", c->name, ref_last_error());
+  } else {
+    check_case(cgal.valid, "%s: CGAL's conforming triangulation is valid", c->name);
+    check_case(crossings == cgal.intersection_count, "%s: %zu intersection points, as CGAL's %zu", c->name,
+               crossings, cgal.intersection_count);
+    check_note("%-40s inserted points: delmesh %4zu  CGAL %4zu  (sub-edges %zu / %zu)", c->name, nv - c->n,
+               cgal.vertex_count - c->n, delmesh_mesh_edge_count(mesh), cgal.constrained_edge_count);
+    check_case(nv <= cgal.vertex_count, "%s: %zu inserted points, at most CGAL's %zu", c->name, nv - c->n,
+               cgal.vertex_count - c->n);
+  }
+  free(table);
+  delmesh_mesh_free(mesh);
+}
+
+static void crossing_cases(void) {
+  static Case c;
+  memset(&c, 0, sizeof c);
+  make_hash(&c, 2);
+  run_crossing_case(&c);
+  memset(&c, 0, sizeof c);
+  make_hash(&c, 6);
+  run_crossing_case(&c);
+  memset(&c, 0, sizeof c);
+  make_star(&c, 8);
+  run_crossing_case(&c);
+  memset(&c, 0, sizeof c);
+  make_random_segments(&c, 40, 0x5e65);
+  run_crossing_case(&c);
 }
 
 /* One bad call: the status, *out untouched, and the message containing `word`. */
@@ -426,6 +520,13 @@ static void error_paths(void) {
   options.mode = DELMESH_MODE2D_CONFORMING;
   expect_failure("crossing segments", xy, 6, cross, 2, &options, DELMESH_ERROR_INVALID_INPUT,
                  "segments 0 and 1 cross");
+  options.split_crossing_segments = 2;
+  expect_failure("split_crossing_segments neither 0 nor 1", xy, 6, cross, 2, &options,
+                 DELMESH_ERROR_INVALID_ARGUMENT, "split_crossing_segments");
+  options.split_crossing_segments = 1;
+  expect_failure("split crossing segments, a point still on a segment", xy, 6, through, 1, &options,
+                 DELMESH_ERROR_INVALID_INPUT, "point 4 lies on segment 0");
+  options.split_crossing_segments = 0;
   expect_failure("point on a segment", xy, 6, through, 1, NULL, DELMESH_ERROR_INVALID_INPUT,
                  "point 4 lies on segment 0");
   expect_failure("zero-length segment", xy, 6, zero, 1, NULL, DELMESH_ERROR_INVALID_INPUT, "zero length");
@@ -672,6 +773,7 @@ int main(int argc, char **argv) {
   }
   check_note("inserted points over all cases: delmesh %zu, CGAL %zu", total_ours, total_cgal);
   check_case(total_ours <= total_cgal, "delmesh inserts no more points than CGAL over all cases");
+  crossing_cases();
   quality_cases();
   return check_finish();
 }

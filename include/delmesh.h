@@ -296,7 +296,8 @@ typedef struct DelmeshSurfaceOptions {
 } DelmeshSurfaceOptions;
 
 /*
- Options of `delmesh_triangulate_2d` (all In). Zero-initialize, then set `mode`.
+ Options of `delmesh_triangulate_2d` (all In). Zero-initialize, then set `mode`: zero is
+ the default of every other field.
  */
 typedef struct DelmeshOptions2d {
     enum DelmeshMode2d mode;
@@ -322,6 +323,12 @@ typedef struct DelmeshOptions2d {
      */
     const double *regions;
     size_t n_regions;
+    /*
+     Conforming and quality modes: 1 = segments that cross are split at their intersection
+     points (new vertices, see `delmesh_triangulate_2d`); 0 (default) = crossing segments
+     are an error. Other values: DELMESH_ERROR_INVALID_ARGUMENT.
+     */
+    int32_t split_crossing_segments;
 } DelmeshOptions2d;
 
 #ifdef __cplusplus
@@ -937,23 +944,39 @@ enum DelmeshStatus delmesh_tetrahedralize_surface_regions(const double *xyz,
    Delaunay-admissible (in every Delaunay triangulation of the vertices that triangles and
    sub-segments use), and every triangle has an empty circumcircle.
 
+ Crossing segments: with `options->split_crossing_segments` = 1 (conforming and quality
+ modes), segments that cross (at a point interior to both) are first split there. The
+ crossings are found with exact orientation tests and each intersection point is computed
+ exactly, then rounded once to the nearest doubles; crossings at the same exact point (three
+ or more segments through it) give one vertex. These vertices come right after the input
+ points (`n_points`, `n_points + 1`, ..., in the order of the first pair of crossing
+ segments, by segment index, through each), before the other added points, with dimension
+ 0: each input segment is then the chain of its pieces, and `delmesh_mesh_edges` still
+ lists the sub-segments input segment after input segment along it, through the
+ intersection points. Should rounding make two pieces cross, put a point on a piece or
+ two points on the same coordinates -> DELMESH_ERROR_LIMIT, the message naming them. A
+ segment end on another segment (T-junction) and collinear overlapping segments are not
+ crossings and stay DELMESH_ERROR_INVALID_INPUT ("a point on a segment").
+
  Output: vertices with z = 0; vertex `i < n_points` is input point `i`, added points
  follow. A point equal to an earlier one is merged onto it (`delmesh_mesh_duplicate_of`),
  keeps its slot and is used by nothing; segments through it use the earlier point and a
  repeated segment is listed once. Triangles are counter-clockwise, label 1 (QUALITY: the
- region labels). Vertex dimensions: 0 at segment ends, 1 for points added on segments, 2 for
- other points, -1 for merged copies (and for every point in DELAUNAY mode). Deterministic.
+ region labels). Vertex dimensions: 0 at segment ends and at intersection points of split
+ segments, 1 for points added on segments, 2 for other points, -1 for merged copies (and
+ for every point in DELAUNAY mode). Deterministic.
 
  On success `*out` receives a new mesh owned by the caller (free it with
  `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xy`, `out`,
  (with `n_segments > 0`) `segments`, or in QUALITY mode (with a count > 0) `holes` or
  `regions` -> DELMESH_ERROR_NULL_ARGUMENT; an unknown mode, a negative or non-finite
- option, a QUALITY angle bound above 34 degrees, a non-integer region label ->
- DELMESH_ERROR_INVALID_ARGUMENT; refinement that does not finish within 2^24 added points
- -> DELMESH_ERROR_LIMIT; a
- non-finite coordinate or one of magnitude above 1e60, all points collinear, a segment
- index out of range, a zero-length segment, a point on a segment, or two crossing segments
- -> DELMESH_ERROR_INVALID_INPUT, the message naming the culprits.
+ option, a QUALITY angle bound above 34 degrees, a non-integer region label, a
+ `split_crossing_segments` other than 0 or 1 -> DELMESH_ERROR_INVALID_ARGUMENT; refinement
+ that does not finish within 2^24 added points, split segments invalid after rounding ->
+ DELMESH_ERROR_LIMIT; a non-finite coordinate or one of magnitude above 1e60, all points
+ collinear, a segment index out of range, a zero-length segment, a point on a segment, or
+ (unless split) two crossing segments -> DELMESH_ERROR_INVALID_INPUT, the message naming
+ the culprits.
 
  Thread-safe: calls on different threads run independently; the inputs are only read.
 

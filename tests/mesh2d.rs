@@ -14,7 +14,7 @@ use delmesh::mesh2d::refine::{QualityOptions, RegionSeed};
 use delmesh::mesh2d::subdivide::Algorithm;
 use delmesh::mesh2d::{
     conforming_2d, conforming_2d_with, delaunay_2d, quality_2d, validate_mesh, Conforming2d,
-    Quality2d,
+    ConformingOptions, Crossings, Quality2d, DIMENSION_CORNER,
 };
 use delmesh::predicates::{incircle_coplanar_sos, orient2d, Sign};
 use delmesh::Mesh;
@@ -144,19 +144,33 @@ fn conform_with(
     case: &str,
     algorithm: Algorithm,
 ) -> Conforming2d {
+    let options = ConformingOptions {
+        algorithm,
+        ..Default::default()
+    };
+    conform_checked(xy, segments, case, &options)
+}
+
+fn conform_checked(
+    xy: &[[f64; 2]],
+    segments: &[[u32; 2]],
+    case: &str,
+    options: &ConformingOptions,
+) -> Conforming2d {
     let flat_segments: Vec<u32> = segments.iter().flatten().copied().collect();
-    let out = conforming_2d_with(&flat(xy), &flat_segments, algorithm)
+    let out = conforming_2d_with(&flat(xy), &flat_segments, options)
         .unwrap_or_else(|e| panic!("{case}: {e}"));
     validate_mesh(&out.mesh).unwrap_or_else(|e| panic!("{case}: {e}"));
     assert_admissible(&out.mesh, case);
     assert_union(&out.mesh, xy, segments, case);
-    let again = conforming_2d_with(&flat(xy), &flat_segments, algorithm).expect("second run");
+    let again = conforming_2d_with(&flat(xy), &flat_segments, options).expect("second run");
     assert_eq!(out.mesh, again.mesh, "{case}: not deterministic");
     eprintln!(
-        "{case} ({algorithm:?}): {} points, {} segments -> {} inserted ({} projections, {} cleanings, {} nodes), degradation worst {:.1} mean {:.2}",
+        "{case} ({options:?}): {} points, {} segments -> {} inserted ({} intersections, {} projections, {} cleanings, {} nodes), degradation worst {:.1} mean {:.2}",
         xy.len(),
         segments.len(),
         out.inserted,
+        out.intersections,
         out.subdivision.projections,
         out.subdivision.cleanings,
         out.subdivision.nodes_cleaned,
@@ -669,6 +683,171 @@ fn algorithm_3_1_on_the_paper_situations() {
         .collect();
     let out = conform_with(&xy, &polyline(xy.len(), false), "zigzag", Algorithm::Brutal);
     assert!(out.subdivision.nodes_cleaned >= 1);
+}
+
+// ---------------------------------------------------------------- crossing segments
+
+fn split() -> ConformingOptions {
+    ConformingOptions {
+        crossings: Crossings::Split,
+        ..Default::default()
+    }
+}
+
+/// The input pairs of `segments` that cross at a point interior to both (exact signs).
+fn crossing_count(xy: &[[f64; 2]], segments: &[[u32; 2]]) -> usize {
+    let p = |i: u32| &xy[i as usize];
+    let mut count = 0;
+    for (k, s) in segments.iter().enumerate() {
+        for t in &segments[k + 1..] {
+            let o1 = orient2d(p(s[0]), p(s[1]), p(t[0])) * orient2d(p(s[0]), p(s[1]), p(t[1]));
+            let o2 = orient2d(p(t[0]), p(t[1]), p(s[0])) * orient2d(p(t[0]), p(t[1]), p(s[1]));
+            if o1 == Sign::Negative && o2 == Sign::Negative {
+                count += 1;
+            }
+        }
+    }
+    count
+}
+
+/// Checks of a split result: the intersection points follow the input points with dimension
+/// 0, each at least on two segments' chains.
+fn assert_intersections(out: &Conforming2d, n_input: usize, expected: usize, case: &str) {
+    assert_eq!(out.intersections, expected, "{case}: intersection points");
+    let dims = &out.mesh.vertex_dimensions[n_input..n_input + expected];
+    for (v, &dim) in (n_input..).zip(dims) {
+        assert_eq!(dim, DIMENSION_CORNER, "{case}: dimension of vertex {v}");
+        let degree = out.mesh.edges.iter().filter(|&&e| e as usize == v).count();
+        assert!(
+            degree >= 4,
+            "{case}: intersection {v} ends {degree} sub-edges"
+        );
+    }
+}
+
+#[test]
+fn crossing_segments_are_an_error_unless_split() {
+    let xy = [
+        [0.0, 1.0],
+        [3.0, 1.0],
+        [0.0, 2.0],
+        [3.0, 2.0],
+        [1.0, 0.0],
+        [1.0, 3.0],
+        [2.0, 0.0],
+        [2.0, 3.0],
+    ];
+    let hash = [[0, 1], [2, 3], [4, 5], [6, 7]];
+    let flat_segments: Vec<u32> = hash.iter().flatten().copied().collect();
+    let err = conforming_2d(&flat(&xy), &flat_segments).unwrap_err();
+    assert_eq!(err.kind, ErrorKind::InvalidInput);
+    assert!(
+        err.message.contains("segments 0 and 2 cross"),
+        "{}",
+        err.message
+    );
+    let out = conform_checked(&xy, &hash, "#", &split());
+    assert_intersections(&out, xy.len(), 4, "#");
+    // In the order of the first crossing pair through each: (0, 2), (0, 3), (1, 2), (1, 3).
+    let expected = [[1.0, 1.0], [2.0, 1.0], [1.0, 2.0], [2.0, 2.0]];
+    for (k, p) in expected.iter().enumerate() {
+        assert_eq!(vertex2(&out.mesh, (xy.len() + k) as u32), *p);
+    }
+    // Every segment is three pieces at least, listed first to second end.
+    assert_eq!(&out.mesh.edges[..2], &[0, 8]);
+    let quality = quality_2d(
+        &flat(&xy),
+        &flat_segments,
+        &QualityOptions {
+            crossings: Crossings::Split,
+            ..angle_only(25.0)
+        },
+    )
+    .expect("quality mode splits too");
+    assert_eq!(quality.intersections, 4);
+    assert_admissible(&quality.mesh, "# (quality)");
+    assert_union(&quality.mesh, &xy, &hash, "# (quality)");
+}
+
+#[test]
+fn segments_through_one_point_share_one_intersection() {
+    // Four segments through (1/3, 1/3), which no double represents: the six crossings are one
+    // point, found equal exactly.
+    let xy = [
+        [0.0, 0.0],
+        [1.0, 1.0],
+        [0.0, 1.0],
+        [1.0, -1.0],
+        [1.0, 0.0],
+        [-1.0, 1.0],
+        [-1.0, 0.0],
+        [3.0, 1.0],
+    ];
+    let star = [[0, 1], [2, 3], [4, 5], [6, 7]];
+    let out = conform_checked(&xy, &star, "star through (1/3, 1/3)", &split());
+    assert_intersections(&out, xy.len(), 1, "star");
+    let centre = vertex2(&out.mesh, xy.len() as u32);
+    assert_eq!(centre, [1.0 / 3.0, 1.0 / 3.0]);
+    // A symmetric star through the origin with a crossing segment elsewhere.
+    let mut xy: Vec<[f64; 2]> = Vec::new();
+    let mut segments = Vec::new();
+    for k in 0..7 {
+        let a = 0.3 + k as f64 * std::f64::consts::PI / 7.0;
+        let (c, s) = (a.cos(), a.sin());
+        segments.push([xy.len() as u32, xy.len() as u32 + 1]);
+        xy.extend([[c, s], [-c, -s]]);
+    }
+    segments.push([xy.len() as u32, xy.len() as u32 + 1]);
+    xy.extend([[-1.2, 0.55], [1.2, 0.62]]);
+    let crossing_the_last = segments[..7]
+        .iter()
+        .filter(|s| crossing_count(&xy, &[**s, segments[7]]) == 1)
+        .count();
+    let out = conform_checked(&xy, &segments, "star through the origin", &split());
+    assert_intersections(&out, xy.len(), 1 + crossing_the_last, "star");
+    assert_eq!(vertex2(&out.mesh, xy.len() as u32), [0.0, 0.0]);
+}
+
+#[test]
+fn random_crossing_segments_are_split() {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(2024);
+    for (count, case) in [(12, "12 random segments"), (60, "60 random segments")] {
+        let xy: Vec<[f64; 2]> = (0..2 * count)
+            .map(|_| [rng.gen::<f64>(), rng.gen::<f64>()])
+            .collect();
+        let segments: Vec<[u32; 2]> = (0..count as u32).map(|k| [2 * k, 2 * k + 1]).collect();
+        // Random segments cross in general position: every crossing is its own point.
+        let crossings = crossing_count(&xy, &segments);
+        assert!(crossings >= count, "{case}: {crossings} crossings");
+        let out = conform_checked(&xy, &segments, case, &split());
+        assert_intersections(&out, xy.len(), crossings, case);
+    }
+}
+
+#[test]
+fn split_segments_keep_t_junctions_and_rounding_failures_errors() {
+    let split_flat = |xy: &[[f64; 2]], segments: &[u32]| {
+        conforming_2d_with(&flat(xy), segments, &split()).unwrap_err()
+    };
+    // A segment ending on another is no crossing.
+    let t = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.0], [1.0, 1.0]];
+    let err = split_flat(&t, &[0, 1, 2, 3]);
+    assert_eq!(err.kind, ErrorKind::InvalidInput);
+    assert!(
+        err.message.contains("point 2 lies on segment 0"),
+        "{}",
+        err.message
+    );
+    // The intersection (9/5, 3/5) rounds onto the input point (1.8, 0.6), on neither segment.
+    let xy = [[0.0, 0.0], [3.0, 1.0], [2.0, 0.0], [1.0, 3.0], [1.8, 0.6]];
+    let err = split_flat(&xy, &[0, 1, 2, 3]);
+    assert_eq!(err.kind, ErrorKind::Limit, "{}", err.message);
+    assert!(
+        err.message
+            .contains("intersection point 5 rounds onto point 4"),
+        "{}",
+        err.message
+    );
 }
 
 // ---------------------------------------------------------------- quality refinement

@@ -237,6 +237,7 @@ fn options(mode: DelmeshMode2d, angle: f64, holes: &[f64]) -> DelmeshOptions2d {
         n_holes: holes.len() / 2,
         regions: std::ptr::null(),
         n_regions: 0,
+        split_crossing_segments: 0,
     }
 }
 

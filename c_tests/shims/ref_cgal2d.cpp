@@ -31,10 +31,13 @@ using Vb = CGAL::Triangulation_vertex_base_2<K>;
 using Fb = CGAL::Constrained_triangulation_face_base_2<K>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds>;
+// Crossing constraints allowed: their intersection points become vertices.
+using CrossingCdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
 
 // Every finite edge is locally Delaunay: the vertex opposite across it is not strictly inside
 // the circumcircle of the face (constrained edges included, which is what conforming means).
-bool is_delaunay(const Cdt &cdt) {
+template <class T>
+bool is_delaunay(const T &cdt) {
   for (auto f : cdt.finite_face_handles()) {
     for (int i = 0; i < 3; ++i) {
       auto g = f->neighbor(i);
@@ -46,22 +49,24 @@ bool is_delaunay(const Cdt &cdt) {
   return true;
 }
 
-}  // namespace
-
-extern "C" int ref_cgal_conforming_2d(const double *xy, size_t n, const uint32_t *segments,
-                                      size_t n_segments, RefConforming2d *out,
-                                      RefTiming *timing) {
+// The conforming Delaunay triangulation of the points and segments in a T (Cdt or
+// CrossingCdt), its figures written to *out.
+template <class T>
+int conforming_2d(const double *xy, size_t n, const uint32_t *segments, size_t n_segments,
+                  RefConforming2d *out, RefTiming *timing) {
   try {
     ref::Stopwatch clock;
-    Cdt cdt;
-    std::vector<Cdt::Vertex_handle> handles;
+    T cdt;
+    std::vector<typename T::Vertex_handle> handles;
     handles.reserve(n);
     for (size_t i = 0; i < n; ++i) handles.push_back(cdt.insert(K::Point_2(xy[2 * i], xy[2 * i + 1])));
+    size_t points = cdt.number_of_vertices();
     for (size_t k = 0; k < n_segments; ++k) {
       uint32_t a = segments[2 * k], b = segments[2 * k + 1];
       if (a >= n || b >= n) return ref::fail("segment index out of range");
       if (handles[a] != handles[b]) cdt.insert_constraint(handles[a], handles[b]);
     }
+    out->intersection_count = cdt.number_of_vertices() - points;
     CGAL::make_conforming_Delaunay_2(cdt);
     size_t constrained = 0;
     for (auto e : cdt.finite_edges()) {
@@ -77,6 +82,19 @@ extern "C" int ref_cgal_conforming_2d(const double *xy, size_t n, const uint32_t
   } catch (...) {
     return ref::fail("unknown C++ exception");
   }
+}
+
+}  // namespace
+
+extern "C" int ref_cgal_conforming_2d(const double *xy, size_t n, const uint32_t *segments,
+                                      size_t n_segments, RefConforming2d *out,
+                                      RefTiming *timing) {
+  return conforming_2d<Cdt>(xy, n, segments, n_segments, out, timing);
+}
+
+extern "C" int ref_cgal_conforming_2d_crossing(const double *xy, size_t n, const uint32_t *segments,
+                                               size_t n_segments, RefConforming2d *out) {
+  return conforming_2d<CrossingCdt>(xy, n, segments, n_segments, out, NULL);
 }
 
 namespace {

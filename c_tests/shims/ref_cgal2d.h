@@ -23,9 +23,17 @@ typedef struct RefConforming2d {
   size_t vertex_count;
   size_t constrained_edge_count;
   int valid;
+  size_t intersection_count; /* vertices the constraints added (crossing variant; else 0) */
 } RefConforming2d;
 int ref_cgal_conforming_2d(const double *xy, size_t n, const uint32_t *segments,
                            size_t n_segments, RefConforming2d *out, RefTiming *timing);
+
+/* ref_cgal_conforming_2d with constraints that may cross: the triangulation takes
+ * CGAL::Exact_predicates_tag, so inserting a constraint that crosses another inserts their
+ * intersection point (computed in doubles, Epick); intersection_count is the number of
+ * vertices the constraints added that way, before make_conforming_Delaunay_2. */
+int ref_cgal_conforming_2d_crossing(const double *xy, size_t n, const uint32_t *segments,
+                                    size_t n_segments, RefConforming2d *out);
 
 /* CGAL::refine_Delaunay_mesh_2 with Delaunay_mesh_size_criteria_2 (shape bound
  * sin^2(min_angle_degrees), no size bound) on the constrained Delaunay triangulation of the

@@ -24,7 +24,8 @@ pub enum DelmeshMode2d {
     DELMESH_MODE2D_QUALITY = 2,
 }
 
-/// Options of `delmesh_triangulate_2d` (all In). Zero-initialize, then set `mode`.
+/// Options of `delmesh_triangulate_2d` (all In). Zero-initialize, then set `mode`: zero is
+/// the default of every other field.
 #[repr(C)]
 pub struct DelmeshOptions2d {
     pub mode: DelmeshMode2d,
@@ -42,6 +43,10 @@ pub struct DelmeshOptions2d {
     /// bound (0 = the global one). Triangles in no seeded region have label 1.
     pub regions: *const f64,
     pub n_regions: usize,
+    /// Conforming and quality modes: 1 = segments that cross are split at their intersection
+    /// points (new vertices, see `delmesh_triangulate_2d`); 0 (default) = crossing segments
+    /// are an error. Other values: DELMESH_ERROR_INVALID_ARGUMENT.
+    pub split_crossing_segments: i32,
 }
 
 /// Triangulates the `n_points` points `xy` (x y interleaved, 2 * n_points doubles) and the
@@ -69,23 +74,39 @@ pub struct DelmeshOptions2d {
 ///   Delaunay-admissible (in every Delaunay triangulation of the vertices that triangles and
 ///   sub-segments use), and every triangle has an empty circumcircle.
 ///
+/// Crossing segments: with `options->split_crossing_segments` = 1 (conforming and quality
+/// modes), segments that cross (at a point interior to both) are first split there. The
+/// crossings are found with exact orientation tests and each intersection point is computed
+/// exactly, then rounded once to the nearest doubles; crossings at the same exact point (three
+/// or more segments through it) give one vertex. These vertices come right after the input
+/// points (`n_points`, `n_points + 1`, ..., in the order of the first pair of crossing
+/// segments, by segment index, through each), before the other added points, with dimension
+/// 0: each input segment is then the chain of its pieces, and `delmesh_mesh_edges` still
+/// lists the sub-segments input segment after input segment along it, through the
+/// intersection points. Should rounding make two pieces cross, put a point on a piece or
+/// two points on the same coordinates -> DELMESH_ERROR_LIMIT, the message naming them. A
+/// segment end on another segment (T-junction) and collinear overlapping segments are not
+/// crossings and stay DELMESH_ERROR_INVALID_INPUT ("a point on a segment").
+///
 /// Output: vertices with z = 0; vertex `i < n_points` is input point `i`, added points
 /// follow. A point equal to an earlier one is merged onto it (`delmesh_mesh_duplicate_of`),
 /// keeps its slot and is used by nothing; segments through it use the earlier point and a
 /// repeated segment is listed once. Triangles are counter-clockwise, label 1 (QUALITY: the
-/// region labels). Vertex dimensions: 0 at segment ends, 1 for points added on segments, 2 for
-/// other points, -1 for merged copies (and for every point in DELAUNAY mode). Deterministic.
+/// region labels). Vertex dimensions: 0 at segment ends and at intersection points of split
+/// segments, 1 for points added on segments, 2 for other points, -1 for merged copies (and
+/// for every point in DELAUNAY mode). Deterministic.
 ///
 /// On success `*out` receives a new mesh owned by the caller (free it with
 /// `delmesh_mesh_free`); on failure `*out` is left untouched. Errors: NULL `xy`, `out`,
 /// (with `n_segments > 0`) `segments`, or in QUALITY mode (with a count > 0) `holes` or
 /// `regions` -> DELMESH_ERROR_NULL_ARGUMENT; an unknown mode, a negative or non-finite
-/// option, a QUALITY angle bound above 34 degrees, a non-integer region label ->
-/// DELMESH_ERROR_INVALID_ARGUMENT; refinement that does not finish within 2^24 added points
-/// -> DELMESH_ERROR_LIMIT; a
-/// non-finite coordinate or one of magnitude above 1e60, all points collinear, a segment
-/// index out of range, a zero-length segment, a point on a segment, or two crossing segments
-/// -> DELMESH_ERROR_INVALID_INPUT, the message naming the culprits.
+/// option, a QUALITY angle bound above 34 degrees, a non-integer region label, a
+/// `split_crossing_segments` other than 0 or 1 -> DELMESH_ERROR_INVALID_ARGUMENT; refinement
+/// that does not finish within 2^24 added points, split segments invalid after rounding ->
+/// DELMESH_ERROR_LIMIT; a non-finite coordinate or one of magnitude above 1e60, all points
+/// collinear, a segment index out of range, a zero-length segment, a point on a segment, or
+/// (unless split) two crossing segments -> DELMESH_ERROR_INVALID_INPUT, the message naming
+/// the culprits.
 ///
 /// Thread-safe: calls on different threads run independently; the inputs are only read.
 ///
@@ -181,7 +202,13 @@ unsafe fn triangulate(
 ) -> Result<Mesh, Failure> {
     Ok(match mode {
         DelmeshMode2d::DELMESH_MODE2D_DELAUNAY => mesh2d::delaunay_2d(xy)?,
-        DelmeshMode2d::DELMESH_MODE2D_CONFORMING => mesh2d::conforming_2d(xy, segments)?.mesh,
+        DelmeshMode2d::DELMESH_MODE2D_CONFORMING => {
+            let conforming = mesh2d::ConformingOptions {
+                crossings: unsafe { crossings_of(options) },
+                ..Default::default()
+            };
+            mesh2d::conforming_2d_with(xy, segments, &conforming)?.mesh
+        }
         DelmeshMode2d::DELMESH_MODE2D_QUALITY => {
             let mut quality = unsafe { quality_options(options) }?;
             quality.holes.extend_from_slice(holes);
@@ -220,7 +247,27 @@ unsafe fn mode_of(options: *const DelmeshOptions2d) -> Result<DelmeshMode2d, Fai
             "options->max_area = {area}: must be finite and >= 0"
         )));
     }
+    // SAFETY: as above.
+    let split = unsafe { (*options).split_crossing_segments };
+    if split != 0 && split != 1 {
+        return Err(invalid(&format!(
+            "options->split_crossing_segments = {split}: must be 0 or 1"
+        )));
+    }
     Ok(mode)
+}
+
+/// What crossing segments do under `options` (checked by [`mode_of`]; NULL: an error).
+///
+/// # Safety
+/// `options` is NULL or points to a readable `DelmeshOptions2d`.
+unsafe fn crossings_of(options: *const DelmeshOptions2d) -> mesh2d::Crossings {
+    // SAFETY: non-NULL and readable by the caller's contract.
+    if options.is_null() || unsafe { (*options).split_crossing_segments } == 0 {
+        mesh2d::Crossings::Reject
+    } else {
+        mesh2d::Crossings::Split
+    }
 }
 
 /// The quality criteria and seeds of the non-NULL `options`.
@@ -269,6 +316,7 @@ unsafe fn quality_options(options: *const DelmeshOptions2d) -> Result<QualityOpt
         holes: holes.chunks_exact(2).map(|h| [h[0], h[1]]).collect(),
         regions: seeds,
         off_centers: true,
+        crossings: unsafe { crossings_of(options) },
     })
 }
 

@@ -55,6 +55,14 @@ impl Cloud {
         i
     }
 
+    /// Removes the last point added by [`Cloud::push`] (the last entry of its bucket).
+    pub fn pop(&mut self) {
+        if let Some(p) = self.points.pop() {
+            let (cx, cy) = self.cell(&p);
+            self.buckets[cy * self.nx + cx].pop();
+        }
+    }
+
     /// Adds a point that queries never return (an input copy of an earlier point).
     pub fn push_unindexed(&mut self, p: [f64; 2]) -> u32 {
         self.points.push(p);

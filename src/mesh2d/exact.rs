@@ -10,6 +10,9 @@
 //! - [`incircle_sos`]`(a, b, c, d)`, for counter-clockwise `a, b, c`: `Positive` when `d` is
 //!   inside their circumcircle, never `Zero` for four distinct points.
 //!
+//! [`scaled_integers`] turns coordinates into big integers over their common power of two, for
+//! exact polynomial evaluation (here and in `crossing.rs`).
+//!
 //! [`Predicates2d`] lets the conflict test of `delaunay.rs` run on the crate's predicates
 //! ([`Adaptive`]) or on those of one box with a static filter first ([`BoxFilter2d`]).
 
@@ -79,7 +82,15 @@ pub fn dot_sign(a: &[f64; 2], b: &[f64; 2], q: &[f64; 2]) -> Sign {
 #[cold]
 #[inline(never)]
 fn exact_dot_sign(a: &[f64; 2], b: &[f64; 2], q: &[f64; 2]) -> Sign {
-    let coords = [a[0], a[1], b[0], b[1], q[0], q[1]];
+    let ([ax, ay, bx, by, qx, qy], _) = scaled_integers([a[0], a[1], b[0], b[1], q[0], q[1]]);
+    let det = (&ax - &qx) * (&bx - &qx) + (&ay - &qy) * (&by - &qy);
+    sign_of(&det)
+}
+
+/// The finite `coords` as big integers `k` with `coords[i] = k[i] * 2^e`, and that exponent
+/// `e`: the smallest power of two among them, so that polynomials in the coordinates are
+/// evaluated without rounding.
+pub fn scaled_integers<const N: usize>(coords: [f64; N]) -> ([BigInt; N], i32) {
     let decoded = coords.map(|x| x.integer_decode());
     let min_exponent = decoded
         .iter()
@@ -87,7 +98,7 @@ fn exact_dot_sign(a: &[f64; 2], b: &[f64; 2], q: &[f64; 2]) -> Sign {
         .map(|d| d.1)
         .min()
         .unwrap_or(0);
-    let [ax, ay, bx, by, qx, qy] = decoded.map(|(mantissa, exponent, sign)| {
+    let integers = decoded.map(|(mantissa, exponent, sign)| {
         if mantissa == 0 {
             return BigInt::from(0);
         }
@@ -98,8 +109,12 @@ fn exact_dot_sign(a: &[f64; 2], b: &[f64; 2], q: &[f64; 2]) -> Sign {
             value
         }
     });
-    let det = (&ax - &qx) * (&bx - &qx) + (&ay - &qy) * (&by - &qy);
-    match det.sign() {
+    (integers, i32::from(min_exponent))
+}
+
+/// The sign of a big integer.
+fn sign_of(x: &BigInt) -> Sign {
+    match x.sign() {
         num_bigint::Sign::Minus => Sign::Negative,
         num_bigint::Sign::NoSign => Sign::Zero,
         num_bigint::Sign::Plus => Sign::Positive,

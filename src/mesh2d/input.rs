@@ -2,12 +2,18 @@
 //! Pébay §3 assumes of a constraint field (Definition 1.5: edges between distinct points of
 //! `S`, meeting only at their ends). Every failure names its culprits (at most
 //! [`MAX_CULPRITS`] of them, then a count).
+//!
+//! On request ([`Crossings::Split`]), segments that cross properly are split at their
+//! intersection points instead ([`crossing`](super::crossing)); the pieces are then checked
+//! as input segments are, a failure there being a rounding limit (`ErrorKind::Limit`).
+//! T-junctions (a segment end on another segment) and collinear overlaps stay errors.
 
 use std::collections::HashSet;
 
 use super::cloud::Cloud;
+use super::crossing::split_at_crossings;
 use super::exact::dot_sign;
-use crate::error::{Error, Result};
+use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::{orient2d, Sign};
 use crate::triangulation::MAX_COORDINATE;
 
@@ -55,16 +61,41 @@ pub fn point_slice(xy: &[f64]) -> Result<&[[f64; 2]]> {
     Ok(points)
 }
 
+/// What to do with segments that cross properly.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Crossings {
+    /// Fail, naming the crossing pairs.
+    #[default]
+    Reject,
+    /// Split them at their intersection points (see the module documentation).
+    Split,
+}
+
+/// The checked constraint field of [`segments`].
+#[derive(Clone, Debug, Default)]
+pub struct Segments {
+    /// The segments (after splitting: their pieces), by input segment and along it, each
+    /// oriented as its input segment.
+    pub segs: Vec<[u32; 2]>,
+    /// The input segment each comes from.
+    pub origin: Vec<u32>,
+    /// Intersection points added to the cloud (after the points it held), when splitting.
+    pub intersections: usize,
+}
+
 /// The segments of `pairs` (2 point indices each) with their ends mapped through `first`
 /// (duplicate points merged), repeated segments dropped (the first kept), in input order,
 /// with the index of the input segment each comes from. Fails on an index out of range, a
-/// zero-length segment, a point on an open segment, or two crossing segments.
+/// zero-length segment, a point on an open segment, or two crossing segments; with
+/// [`Crossings::Split`], crossing segments are split instead, the intersection points pushed
+/// to `cloud` (which holds `points`, with those that are not their own `first` unindexed).
 pub fn segments(
     pairs: &[u32],
     points: &[[f64; 2]],
     first: &[u32],
-    cloud: &Cloud,
-) -> Result<(Vec<[u32; 2]>, Vec<u32>)> {
+    cloud: &mut Cloud,
+    crossings: Crossings,
+) -> Result<Segments> {
     let (pairs, rest) = pairs.as_chunks::<2>();
     if !rest.is_empty() {
         return Err(Error::invalid_input("segment indices are not in pairs"));
@@ -102,18 +133,70 @@ pub fn segments(
             origin.push(k as u32);
         }
     }
-    points_on_segments(&kept, &origin, points, cloud)?;
-    crossings(&kept, &origin, points, cloud)?;
-    Ok((kept, origin))
+    fail_with(points_on_segments(&kept, &origin, &cloud.points, cloud))?;
+    let crossing = crossing_pairs(&kept, &cloud.points, cloud);
+    if crossing.is_empty() {
+        return Ok(Segments {
+            segs: kept,
+            origin,
+            intersections: 0,
+        });
+    }
+    if crossings == Crossings::Reject {
+        return fail_with(crossing_messages(&crossing, &origin)).map(|()| Segments::default());
+    }
+    let (pieces, of_segment, intersections) = split_at_crossings(&kept, &crossing, cloud);
+    let piece_origin: Vec<u32> = of_segment.iter().map(|&s| origin[s as usize]).collect();
+    let mut found = coincident_points(cloud, n);
+    found.extend(points_on_segments(
+        &pieces,
+        &piece_origin,
+        &cloud.points,
+        cloud,
+    ));
+    found.extend(crossing_messages(
+        &crossing_pairs(&pieces, &cloud.points, cloud),
+        &piece_origin,
+    ));
+    fail_with(found).map_err(|e| {
+        Error::new(
+            ErrorKind::Limit,
+            format!(
+                "splitting the crossing segments at their intersection points, rounded to \
+                 doubles, gives an invalid constraint field: {}",
+                e.message
+            ),
+        )
+    })?;
+    Ok(Segments {
+        segs: pieces,
+        origin: piece_origin,
+        intersections,
+    })
 }
 
-/// Fails when a point lies on the open segment of a segment.
+/// A message for every point from `from` on (the rounded intersection points) that has the
+/// coordinates of another point of `cloud`.
+fn coincident_points(cloud: &Cloud, from: usize) -> Vec<String> {
+    let mut found = Vec::new();
+    for i in from..cloud.points.len() {
+        let p = cloud.points[i];
+        cloud.candidates(p, p, |j| {
+            if j as usize != i && cloud.points[j as usize] == p {
+                found.push(format!("intersection point {i} rounds onto point {j}"));
+            }
+        });
+    }
+    found
+}
+
+/// A message for every point on the open segment of a segment.
 fn points_on_segments(
     segs: &[[u32; 2]],
     origin: &[u32],
     points: &[[f64; 2]],
     cloud: &Cloud,
-) -> Result<()> {
+) -> Vec<String> {
     let mut found = Vec::new();
     for (k, s) in segs.iter().enumerate() {
         let (a, b) = (&points[s[0] as usize], &points[s[1] as usize]);
@@ -128,12 +211,13 @@ fn points_on_segments(
             }
         }
     }
-    fail_with(found)
+    found
 }
 
-/// Fails when two segments cross (the pairs that touch share an end or were reported as a
-/// point on a segment). Candidate pairs share a grid bucket of their bounding boxes.
-fn crossings(segs: &[[u32; 2]], origin: &[u32], points: &[[f64; 2]], cloud: &Cloud) -> Result<()> {
+/// The pairs of segments (indices into `segs`, sorted) that cross properly (the pairs that
+/// touch share an end or were reported as a point on a segment). Candidate pairs share a grid
+/// bucket of their bounding boxes.
+fn crossing_pairs(segs: &[[u32; 2]], points: &[[f64; 2]], cloud: &Cloud) -> Vec<(u32, u32)> {
     let p = |i: u32| &points[i as usize];
     let mut buckets: std::collections::HashMap<(usize, usize), Vec<u32>> = Default::default();
     for (k, s) in segs.iter().enumerate() {
@@ -161,15 +245,24 @@ fn crossings(segs: &[[u32; 2]], origin: &[u32], points: &[[f64; 2]], cloud: &Clo
                 let o1 = orient2d(p(a), p(b), p(c)) * orient2d(p(a), p(b), p(d));
                 let o2 = orient2d(p(c), p(d), p(a)) * orient2d(p(c), p(d), p(b));
                 if o1 == Sign::Negative && o2 == Sign::Negative {
-                    found.push(format!(
-                        "segments {} and {} cross",
-                        origin[s as usize], origin[t as usize]
-                    ));
+                    found.push((s.min(t), s.max(t)));
                 }
             }
         }
     }
-    fail_with(found)
+    found.sort_unstable();
+    found
+}
+
+/// "segments i and j cross" for each pair, named by input segment.
+fn crossing_messages(pairs: &[(u32, u32)], origin: &[u32]) -> Vec<String> {
+    pairs
+        .iter()
+        .map(|&(s, t)| {
+            let (i, j) = (origin[s as usize], origin[t as usize]);
+            format!("segments {} and {} cross", i.min(j), i.max(j))
+        })
+        .collect()
 }
 
 fn fail_with(mut found: Vec<String>) -> Result<()> {

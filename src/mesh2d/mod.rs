@@ -16,16 +16,20 @@
 //! - [`refine`]: quality triangulation of the domain (Ruppert's Delaunay refinement with
 //!   Shewchuk's concentric shells and Üngör's off-centers) on top of the conforming one, every
 //!   sub-segment kept strongly Delaunay-admissible ([`quality_2d`]);
+//! - [`input`]: checks of the points and segments, and [`crossing`]: crossing segments split
+//!   at their intersection points, on request;
 //! - [`read`]: Triangle `.node` / `.poly` and CGAL `.edg` readers.
 //!
 //! Invariants of a result (checked by [`validate_mesh`]): every triangle counter-clockwise
 //! (exact `orient2d > 0`) with vertex indices in range; input points first, in input order,
-//! then the added points; every constraint sub-edge `Mesh::edges` is an edge of a triangle and
-//! strongly Delaunay-admissible relative to all vertices (the property tests check it again,
+//! then the intersection points of split crossing segments, then the other added points;
+//! every constraint sub-edge `Mesh::edges` is an edge of a triangle and strongly
+//! Delaunay-admissible relative to all vertices (the property tests check it again,
 //! independently).
 
 pub mod classify;
 pub mod cloud;
+pub mod crossing;
 pub mod delaunay;
 pub mod exact;
 pub mod input;
@@ -38,10 +42,12 @@ use crate::mesh::{Mesh, DIMENSION_UNKNOWN};
 use crate::predicates::{orient2d, Sign};
 use cloud::Cloud;
 use delaunay::{first_duplicates, Delaunay2d};
+pub use input::Crossings;
 use refine::{QualityOptions, RefinementReport, Refiner};
 use subdivide::{Algorithm, Subdivision, SubdivisionReport};
 
-/// Vertex dimension of an input point at a segment end (a corner).
+/// Vertex dimension of an input point at a segment end (a corner), and of an intersection
+/// point of split crossing segments.
 pub const DIMENSION_CORNER: i8 = 0;
 /// Vertex dimension of a point added on a segment.
 pub const DIMENSION_SEGMENT: i8 = 1;
@@ -65,8 +71,11 @@ pub struct Degradation {
 #[derive(Clone, Debug)]
 pub struct Conforming2d {
     pub mesh: Mesh,
-    /// Points added on the segments (`mesh` vertices past the input points).
+    /// Points added (`mesh` vertices past the input points): the intersection points, then
+    /// the points added on the segments.
     pub inserted: usize,
+    /// Intersection points of crossing segments (with [`Crossings::Split`]).
+    pub intersections: usize,
     pub subdivision: SubdivisionReport,
     pub degradation: Degradation,
 }
@@ -86,23 +95,33 @@ pub fn delaunay_2d(xy: &[f64]) -> Result<Mesh> {
 /// sub-segment is strongly Delaunay-admissible, then the augmented point set is triangulated.
 /// `Mesh::edges` lists the sub-segments, by input segment and along it.
 pub fn conforming_2d(xy: &[f64], segments: &[u32]) -> Result<Conforming2d> {
-    conforming_2d_with(xy, segments, Algorithm::ClosedNodes)
+    conforming_2d_with(xy, segments, &ConformingOptions::default())
 }
 
-/// [`conforming_2d`] with the choice of Pébay's algorithm (3.2 by default, 3.1 as an option).
+/// The choices of [`conforming_2d_with`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ConformingOptions {
+    /// Pébay's algorithm: 3.2 by default, 3.1 as an option.
+    pub algorithm: Algorithm,
+    /// Crossing segments: an error by default, or split at their intersection points.
+    pub crossings: Crossings,
+}
+
+/// [`conforming_2d`] with the choice of Pébay's algorithm and of what crossing segments do.
 pub fn conforming_2d_with(
     xy: &[f64],
     segments: &[u32],
-    algorithm: Algorithm,
+    options: &ConformingOptions,
 ) -> Result<Conforming2d> {
     let points = input::points(xy)?;
-    let c = conform(points, segments, algorithm)?;
+    let c = conform(points, segments, options)?;
     let dt = Delaunay2d::new(&c.all)?;
     let edges = ordered_sub_edges(&c.sub, &c.segs, &c.origin, &c.all, dt.duplicate_of());
     let mesh = mesh_of(&c.all, &dt, c.dims, edges);
     validate_mesh(&mesh).map_err(|m| Error::internal(format!("conforming 2D result: {m}")))?;
     Ok(Conforming2d {
         inserted: c.all.len() - c.n_input,
+        intersections: c.intersections,
         degradation: degradation(&mesh),
         subdivision: c.sub.report,
         mesh,
@@ -112,6 +131,7 @@ pub fn conforming_2d_with(
 /// Pébay's subdivision of the segments of checked input points.
 struct Conformed {
     n_input: usize,
+    intersections: usize,
     /// Input points then added points.
     all: Vec<[f64; 2]>,
     /// Kept segments (duplicates merged) and the input segment each comes from.
@@ -121,22 +141,31 @@ struct Conformed {
     sub: Subdivision,
 }
 
-fn conform(points: Vec<[f64; 2]>, segments: &[u32], algorithm: Algorithm) -> Result<Conformed> {
+fn conform(
+    points: Vec<[f64; 2]>,
+    segments: &[u32],
+    options: &ConformingOptions,
+) -> Result<Conformed> {
     let first = first_duplicates(&points);
-    let cloud = cloud_of(&points, &first, segments.len() / 2);
-    let (segs, origin) = input::segments(segments, &points, &first, &cloud)?;
+    let mut cloud = cloud_of(&points, &first, segments.len() / 2);
+    let input::Segments {
+        segs,
+        origin,
+        intersections,
+    } = input::segments(segments, &points, &first, &mut cloud, options.crossings)?;
     let limit = ADDED_POINTS_PER_ITEM.saturating_mul(points.len() + segs.len());
-    let mut sub = Subdivision::new(cloud, &segs, limit, algorithm);
+    let mut sub = Subdivision::new(cloud, &segs, limit, options.algorithm);
     sub.run()?;
     let all = sub.cloud.points.clone();
     let mut dims = vec![DIMENSION_PLANE; all.len()];
+    dims[points.len() + intersections..].fill(DIMENSION_SEGMENT);
     for s in &segs {
         dims[s[0] as usize] = DIMENSION_CORNER;
         dims[s[1] as usize] = DIMENSION_CORNER;
     }
-    dims[points.len()..].fill(DIMENSION_SEGMENT);
     Ok(Conformed {
         n_input: points.len(),
+        intersections,
         all,
         segs,
         origin,
@@ -150,6 +179,8 @@ fn conform(points: Vec<[f64; 2]>, segments: &[u32], algorithm: Algorithm) -> Res
 pub struct Quality2d {
     /// Triangles of the domain only, labeled by region; `edges` the sub-segments.
     pub mesh: Mesh,
+    /// Intersection points of crossing segments (with [`Crossings::Split`]).
+    pub intersections: usize,
     /// Points added on the segments before refinement (the first phase of [`refine`]).
     pub conforming_points: usize,
     pub refinement: RefinementReport,
@@ -163,7 +194,7 @@ pub struct Quality2d {
 /// nothing. Every sub-segment is in every Delaunay triangulation of the mesh's vertices.
 pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Result<Quality2d> {
     options.check()?;
-    let points = input::points(xy)?;
+    let mut points = input::points(xy)?;
     let hull;
     let segments = if segments.is_empty() {
         hull = hull_segments(&points)?;
@@ -171,10 +202,18 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
     } else {
         segments
     };
+    let n_caller = points.len();
+    let mut first = first_duplicates(&points);
+    let mut checked = cloud_of(&points, &first, segments.len() / 2);
+    let input::Segments {
+        segs,
+        origin,
+        intersections,
+    } = input::segments(segments, &points, &first, &mut checked, options.crossings)?;
+    // The intersection points of split segments count as input points from here on.
+    points.extend_from_slice(&checked.points[n_caller..]);
+    first.extend(n_caller as u32..points.len() as u32);
     let n_input = points.len();
-    let first = first_duplicates(&points);
-    let cloud = cloud_of(&points, &first, segments.len() / 2);
-    let (segs, origin) = input::segments(segments, &points, &first, &cloud)?;
     // Ruppert's first phase on the segment points only; the other input points are inserted
     // afterwards without crossing a segment, so that points outside the domain split nothing.
     let mut on_any = vec![false; n_input];
@@ -262,6 +301,7 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
     };
     validate_triangles(&mesh).map_err(|m| Error::internal(format!("quality 2D result: {m}")))?;
     Ok(Quality2d {
+        intersections,
         conforming_points: n_all - n_input,
         refinement: r.report,
         mesh,
@@ -302,14 +342,15 @@ fn hull_segments(points: &[[f64; 2]]) -> Result<Vec<u32>> {
 }
 
 /// Sub-segments `(a, b, segment)` ordered by input segment and along it from its first end,
-/// oriented that way.
+/// oriented that way (the segments `segs` of one input segment are consecutive, in order
+/// along it).
 fn ordered_segments(
     subs: &[(u32, u32, u32)],
     segs: &[[u32; 2]],
     origin: &[u32],
     points: &[[f64; 2]],
 ) -> Vec<u32> {
-    let mut keyed: Vec<(u32, f64, u32, u32)> = subs
+    let mut keyed: Vec<(u32, u32, f64, u32, u32)> = subs
         .iter()
         .map(|&(a, b, s)| {
             let [p, q] = segs[s as usize].map(|i| points[i as usize]);
@@ -318,11 +359,14 @@ fn ordered_segments(
                 (x[0] - p[0]) * (q[0] - p[0]) + (x[1] - p[1]) * (q[1] - p[1])
             };
             let (a, b) = if along(a) <= along(b) { (a, b) } else { (b, a) };
-            (origin[s as usize], along(a), a, b)
+            (origin[s as usize], s, along(a), a, b)
         })
         .collect();
-    keyed.sort_by(|x, y| x.0.cmp(&y.0).then(x.1.total_cmp(&y.1)));
-    keyed.into_iter().flat_map(|(_, _, a, b)| [a, b]).collect()
+    keyed.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)).then(x.2.total_cmp(&y.2)));
+    keyed
+        .into_iter()
+        .flat_map(|(_, _, _, a, b)| [a, b])
+        .collect()
 }
 
 /// The grid of the input points, copies of an earlier point left out of the buckets.

@@ -57,6 +57,7 @@ use super::classify::classify_with;
 use super::cloud::Cloud;
 use super::delaunay::{conflict, INFINITE};
 use super::exact::dot_sign;
+use super::input::Crossings;
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::{incircle, orient2d, Sign};
 
@@ -99,6 +100,8 @@ pub struct QualityOptions {
     pub regions: Vec<RegionSeed>,
     /// Off-centers (default) or circumcenters only.
     pub off_centers: bool,
+    /// Crossing segments: an error by default, or split at their intersection points.
+    pub crossings: Crossings,
 }
 
 impl Default for QualityOptions {
@@ -109,6 +112,7 @@ impl Default for QualityOptions {
             holes: Vec::new(),
             regions: Vec::new(),
             off_centers: true,
+            crossings: Crossings::Reject,
         }
     }
 }

@@ -43,6 +43,7 @@ class Options2d(ctypes.Structure):
         ("n_holes", ctypes.c_size_t),
         ("regions", ctypes.POINTER(ctypes.c_double)),
         ("n_regions", ctypes.c_size_t),
+        ("split_crossing_segments", ctypes.c_int),
     ]
 
 
