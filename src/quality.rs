@@ -112,6 +112,21 @@ pub fn min_dihedral(p: [P; 4]) -> f64 {
     (-lo).acos().to_degrees()
 }
 
+/// Circumradius over shortest edge of the tetrahedron `p`; infinite when it is flat.
+pub fn radius_edge(p: [P; 4]) -> f64 {
+    let circumradius = norm(&sub(&circumcenter([&p[0], &p[1], &p[2], &p[3]]), &p[0]));
+    let shortest = (0..4)
+        .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
+        .map(|(i, j)| norm(&sub(&p[i], &p[j])))
+        .fold(f64::INFINITY, f64::min);
+    let ratio = circumradius / shortest;
+    if ratio.is_nan() {
+        f64::INFINITY
+    } else {
+        ratio
+    }
+}
+
 /// Dihedral angles, radius-edge and radius ratios of the tetrahedron `p` (either orientation).
 pub fn tetrahedron(p: [P; 4]) -> TetQuality {
     let n = outward_normals(&p);
@@ -121,16 +136,12 @@ pub fn tetrahedron(p: [P; 4]) -> TetQuality {
     let volume = tet_volume(corners).abs();
     let area: f64 = n.iter().map(|v| 0.5 * norm(v)).sum();
     let circumradius = norm(&sub(&circumcenter(corners), &p[0]));
-    let shortest = (0..4)
-        .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
-        .map(|(i, j)| norm(&sub(&p[i], &p[j])))
-        .fold(f64::INFINITY, f64::min);
     let inradius = 3.0 * volume / area;
     let ratio = 3.0 * inradius / circumradius;
     TetQuality {
         min_dihedral,
         max_dihedral,
-        radius_edge: circumradius / shortest,
+        radius_edge: radius_edge(p),
         radius_ratio: if ratio.is_finite() {
             ratio.clamp(0.0, 1.0)
         } else {

@@ -95,6 +95,7 @@ pub fn tetrahedralize_surface(
     let normals: Vec<Point> = tris.iter().map(|f| unit_normal(points, *f)).collect();
     suppress::suppress_all(&mut mesh, &mut part, &normals)?;
     suppress::merge_interior(&mut mesh, points.len() as u32 + 8)?;
+    suppress::relocate_interior(&mut mesh, points.len() as u32 + 8);
     let mut regions = classify::regions(&mut mesh, tris, options)?;
     if options.max_radius_edge_ratio > 0.0 || regions.max_volume.iter().any(|&v| v > 0.0) {
         refine::refine(

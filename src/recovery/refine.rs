@@ -530,20 +530,7 @@ fn well_conditioned_circumcenter(p: &[Point; 4]) -> Point {
 
 /// Circumradius over shortest edge of tetrahedron `t` (infinite when flat).
 fn radius_edge_ratio(mesh: &TetMesh, t: u32) -> f64 {
-    let p = mesh.tets.vertices(t).map(|v| *mesh.point(v));
-    let r = dist(&circumcenter([&p[0], &p[1], &p[2], &p[3]]), &p[0]);
-    let mut shortest = f64::INFINITY;
-    for i in 0..4 {
-        for j in i + 1..4 {
-            shortest = shortest.min(dist(&p[i], &p[j]));
-        }
-    }
-    let ratio = r / shortest;
-    if ratio.is_nan() {
-        f64::INFINITY
-    } else {
-        ratio
-    }
+    crate::quality::radius_edge(mesh.tets.vertices(t).map(|v| *mesh.point(v)))
 }
 
 /// Distance from `p` to segment `ab` where `p` projects inside it, else infinity.
