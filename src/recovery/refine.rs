@@ -202,8 +202,8 @@ impl Refiner<'_> {
     }
 
     /// The tetrahedron of `t`'s region whose closure holds `c`, by a walk that never crosses
-    /// an input triangle; `None` when `c` is beyond one, on one, on a vertex, or the walk
-    /// does not end.
+    /// an input triangle nor leaves the kept regions (the convex hull when it is kept);
+    /// `None` when `c` is beyond one, on one, on a vertex, or the walk does not end.
     fn locate(&self, t: u32, c: &Point) -> Option<u32> {
         let mut at = t;
         'walk: for _ in 0..WALK {
@@ -214,10 +214,11 @@ impl Refiner<'_> {
                 let [a, b, d] = f.map(|v| *self.mesh.point(v));
                 match orient3d(&a, &b, &d, c) {
                     Sign::Negative => {
-                        if self.protected.facet(f) {
+                        let n = self.mesh.tets.neighbor(at, i);
+                        if self.protected.facet(f) || !self.regions.kept(n) {
                             return None;
                         }
-                        at = self.mesh.tets.neighbor(at, i);
+                        at = n;
                         continue 'walk;
                     }
                     Sign::Zero => {
