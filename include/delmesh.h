@@ -281,16 +281,20 @@ typedef struct DelmeshSurfaceOptions {
     /*
      0 = no quality refinement; else tetrahedra whose circumradius-to-shortest-edge ratio is
      above it are refined with interior points (TetGen `-q`), never splitting an input
-     triangle. At least 1.2 when not 0.
+     triangle: a circumcenter beyond the surface, encroaching an input triangle or edge, or
+     within an input vertex's local feature size is declined (TetGen `-Y`'s rules), so
+     tetrahedra the surface forces stay above the bound. At least 1.2 when not 0.
      */
     double max_radius_edge_ratio;
     /*
-     0 = none; else an upper bound on every tetrahedron's volume (TetGen `-a`).
+     0 = none; else an upper bound on every tetrahedron's volume (TetGen `-a`), met by
+     circumcenters, or centroids where those are declined.
      */
     double max_volume;
     /*
-     1 = keep the tetrahedra between the surface and its convex hull too (they get their
-     own label); 0 = drop them.
+     1 = keep the tetrahedra between the surface and its convex hull too (they would get
+     their own label); 0 = drop them. 1 is not supported yet:
+     DELMESH_ERROR_INVALID_ARGUMENT.
      */
     int32_t keep_convex_hull;
 } DelmeshSurfaceOptions;
@@ -855,7 +859,8 @@ enum DelmeshStatus delmesh_regular_tetrahedralize(const double *xyz,
  triangle uses (they are not meshed). Deterministic.
 
  Errors: NULL `xyz`, `triangles` or `out` -> DELMESH_ERROR_NULL_ARGUMENT; a negative or
- non-finite option, a ratio in (0, 1.2) -> DELMESH_ERROR_INVALID_ARGUMENT; a non-finite
+ non-finite option, a ratio in (0, 1.2), keep_convex_hull = 1 (not supported yet) ->
+ DELMESH_ERROR_INVALID_ARGUMENT; a non-finite
  coordinate, an index out of range, a degenerate (zero-area) or repeated triangle, an edge
  with a single triangle, two input vertices at one position, or two triangles that
  intersect other than along their shared vertices and edge -> DELMESH_ERROR_INVALID_INPUT,
