@@ -7,7 +7,7 @@
 //! A flip never destroys a protected edge or facet ([`Protected`]: the input surface) and is
 //! applied only when every new tetrahedron is positively oriented (exact).
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 
 use super::tetmesh::{key, Key, TetMesh};
 use crate::error::Result;
@@ -20,8 +20,8 @@ const MAX_SHELL: usize = 24;
 /// The edges and facets no flip may destroy.
 #[derive(Default)]
 pub struct Protected {
-    pub edges: HashSet<[u32; 2]>,
-    pub facets: HashSet<Key>,
+    pub edges: FxHashSet<[u32; 2]>,
+    pub facets: FxHashSet<Key>,
 }
 
 impl Protected {

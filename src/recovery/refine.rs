@@ -186,12 +186,11 @@ impl Refiner<'_> {
         };
         let s = self.mesh.add_point(c);
         let cone: Vec<[u32; 4]> = cone.into_iter().map(|[a, b, d]| [a, b, d, s]).collect();
-        if !self.mesh.fits(&cavity, &cone) {
+        let component = self.regions.component[start as usize];
+        let Some(created) = self.mesh.try_replace(&cavity, &cone)? else {
             self.mesh.pop_point();
             return Ok(false);
-        }
-        let component = self.regions.component[start as usize];
-        let created = self.mesh.replace(&cavity, &cone)?;
+        };
         self.regions.assign(&created, component);
         self.lfs.push(0.0);
         let created = self.lawson(created)?;
@@ -345,14 +344,17 @@ impl Refiner<'_> {
                 for &u in cavity.iter() {
                     self.mesh.tets.mark[u as usize] = 0;
                 }
-                let keeps_vertices = cavity.iter().all(|&u| {
-                    self.mesh
-                        .tets
-                        .vertices(u)
-                        .iter()
-                        .all(|v| facets.iter().any(|f| f.contains(v)))
-                });
-                return keeps_vertices.then_some(facets);
+                // Every cavity vertex must stay, on a boundary facet.
+                let mut on_boundary: Vec<u32> = facets.iter().flatten().copied().collect();
+                let mut all: Vec<u32> = cavity
+                    .iter()
+                    .flat_map(|&u| self.mesh.tets.vertices(u))
+                    .collect();
+                for set in [&mut on_boundary, &mut all] {
+                    set.sort_unstable();
+                    set.dedup();
+                }
+                return (on_boundary.len() == all.len()).then_some(facets);
             }
             for &u in &blocked {
                 self.mesh.tets.mark[u as usize] = 0;

@@ -263,6 +263,20 @@ impl TetMesh {
     pub fn replace(&mut self, old: &[u32], new: &[[u32; 4]]) -> Result<Vec<u32>> {
         let outer = self.outer_facets(old);
         let gluing = match_facets(&outer, new)?;
+        self.apply(old, new, &gluing)
+    }
+
+    /// [`TetMesh::replace`] when `new` fits ([`TetMesh::fits`]); `None`, changing nothing,
+    /// when it does not.
+    pub fn try_replace(&mut self, old: &[u32], new: &[[u32; 4]]) -> Result<Option<Vec<u32>>> {
+        let outer = self.outer_facets(old);
+        match match_facets(&outer, new) {
+            Ok(gluing) => self.apply(old, new, &gluing).map(Some),
+            Err(_) => Ok(None),
+        }
+    }
+
+    fn apply(&mut self, old: &[u32], new: &[[u32; 4]], gluing: &[[Glue; 4]]) -> Result<Vec<u32>> {
         for &t in old {
             self.tets.kill(t);
         }
