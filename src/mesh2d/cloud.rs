@@ -69,24 +69,32 @@ impl Cloud {
         (self.points.len() - 1) as u32
     }
 
-    /// Calls `f` with every grid cell `(x, y)` that meets the box `[lo, hi]`.
-    pub fn cells_of_box(&self, lo: [f64; 2], hi: [f64; 2], mut f: impl FnMut((usize, usize))) {
+    /// The grid cells that meet the box `[lo, hi]`: `[x0, y0, x1, y1]`, the cells `(x, y)` with
+    /// `x0 <= x <= x1` and `y0 <= y <= y1`, numbered `y * columns + x` (see [`Cloud::columns`]).
+    pub fn cells_of_box(&self, lo: [f64; 2], hi: [f64; 2]) -> [usize; 4] {
         let (x0, y0) = self.cell(&lo);
         let (x1, y1) = self.cell(&hi);
-        for cy in y0..=y1 {
-            for cx in x0..=x1 {
-                f((cx, cy));
-            }
-        }
+        [x0, y0, x1, y1]
+    }
+
+    /// Columns of the grid; `columns * rows` cells.
+    pub fn columns(&self) -> usize {
+        self.nx
+    }
+
+    /// Cells of the grid.
+    pub fn cell_count(&self) -> usize {
+        self.nx * self.ny
     }
 
     fn cell(&self, p: &[f64; 2]) -> (usize, usize) {
         let axis = |k: usize, n: usize| {
-            let c = ((p[k] - self.lo[k]) * self.scale).floor();
-            if c.is_nan() || c < 0.0 {
-                0
-            } else {
+            let c = (p[k] - self.lo[k]) * self.scale;
+            // Truncation is the floor on nonnegative numbers; NaN and negatives go to 0.
+            if c >= 0.0 {
                 (c as usize).min(n - 1)
+            } else {
+                0
             }
         };
         (axis(0, self.nx), axis(1, self.ny))

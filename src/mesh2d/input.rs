@@ -215,27 +215,61 @@ fn points_on_segments(
 }
 
 /// The pairs of segments (indices into `segs`, sorted) that cross properly (the pairs that
-/// touch share an end or were reported as a point on a segment). Candidate pairs share a grid
-/// bucket of their bounding boxes.
+/// touch share an end or were reported as a point on a segment). Candidate pairs have
+/// overlapping bounding boxes and are listed in the grid buckets those boxes meet; each pair is
+/// tested once, in the first bucket (lowest row, then column) the two boxes share.
 fn crossing_pairs(segs: &[[u32; 2]], points: &[[f64; 2]], cloud: &Cloud) -> Vec<(u32, u32)> {
     let p = |i: u32| &points[i as usize];
-    let mut buckets: std::collections::HashMap<(usize, usize), Vec<u32>> = Default::default();
-    for (k, s) in segs.iter().enumerate() {
-        let (a, b) = (p(s[0]), p(s[1]));
-        let lo = [a[0].min(b[0]), a[1].min(b[1])];
-        let hi = [a[0].max(b[0]), a[1].max(b[1])];
-        cloud.cells_of_box(lo, hi, |cell| {
-            buckets.entry(cell).or_default().push(k as u32)
+    let boxes: Vec<[[f64; 2]; 2]> = segs
+        .iter()
+        .map(|s| {
+            let (a, b) = (p(s[0]), p(s[1]));
+            [
+                [a[0].min(b[0]), a[1].min(b[1])],
+                [a[0].max(b[0]), a[1].max(b[1])],
+            ]
+        })
+        .collect();
+    let cells: Vec<[usize; 4]> = boxes
+        .iter()
+        .map(|b| cloud.cells_of_box(b[0], b[1]))
+        .collect();
+    let columns = cloud.columns();
+    let each_cell = |c: &[usize; 4], f: &mut dyn FnMut(usize)| {
+        for y in c[1]..=c[3] {
+            for x in c[0]..=c[2] {
+                f(y * columns + x);
+            }
+        }
+    };
+    // The segments of each bucket, in increasing order, in one array.
+    let mut start = vec![0usize; cloud.cell_count() + 1];
+    for c in &cells {
+        each_cell(c, &mut |id| start[id + 1] += 1);
+    }
+    for id in 1..start.len() {
+        start[id] += start[id - 1];
+    }
+    let mut listed = vec![0u32; start[start.len() - 1]];
+    let mut next = start.clone();
+    for (k, c) in cells.iter().enumerate() {
+        each_cell(c, &mut |id| {
+            listed[next[id]] = k as u32;
+            next[id] += 1;
         });
     }
-    let mut tested = HashSet::new();
     let mut found = Vec::new();
-    let mut cells: Vec<_> = buckets.into_iter().collect();
-    cells.sort_unstable();
-    for (_, list) in cells {
-        for (x, &s) in list.iter().enumerate() {
-            for &t in &list[x + 1..] {
-                if !tested.insert((s, t)) {
+    for id in 0..start.len() - 1 {
+        let list = &listed[start[id]..start[id + 1]];
+        let (x, y) = (id % columns, id / columns);
+        for (i, &s) in list.iter().enumerate() {
+            for &t in &list[i + 1..] {
+                let (cs, ct) = (&cells[s as usize], &cells[t as usize]);
+                let (bs, bt) = (&boxes[s as usize], &boxes[t as usize]);
+                if x != cs[0].max(ct[0])
+                    || y != cs[1].max(ct[1])
+                    || (0..2).any(|k| bs[1][k] < bt[0][k] || bt[1][k] < bs[0][k])
+                {
                     continue;
                 }
                 let ([a, b], [c, d]) = (segs[s as usize], segs[t as usize]);
@@ -245,7 +279,7 @@ fn crossing_pairs(segs: &[[u32; 2]], points: &[[f64; 2]], cloud: &Cloud) -> Vec<
                 let o1 = orient2d(p(a), p(b), p(c)) * orient2d(p(a), p(b), p(d));
                 let o2 = orient2d(p(c), p(d), p(a)) * orient2d(p(c), p(d), p(b));
                 if o1 == Sign::Negative && o2 == Sign::Negative {
-                    found.push((s.min(t), s.max(t)));
+                    found.push((s, t));
                 }
             }
         }

@@ -223,7 +223,8 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
     }
     let mut cloud = grid_of(&points, segs.len(), |i| on_any[i]);
     let limit = ADDED_POINTS_PER_ITEM.saturating_mul(n_input + segs.len());
-    let (subs, added_on) = refine::split_segments(&mut cloud, &segs, limit)?;
+    let acute = refine::acute_apices(&points, &segs);
+    let (subs, added_on) = refine::split_segments(&mut cloud, &segs, &acute, limit)?;
     let all = cloud.points;
     let n_all = all.len();
     let dt = Delaunay2d::of_subset(&all, |i| i as usize >= n_input || on_any[i as usize]).map_err(
@@ -246,7 +247,7 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         dims[s[1] as usize] = DIMENSION_CORNER;
     }
     dims[n_input..].fill(DIMENSION_SEGMENT);
-    let mut r = Refiner::new(all.clone(), compact, segs, on_segment, &sub_edges)?;
+    let mut r = Refiner::new(all.clone(), compact, segs, acute, on_segment, &sub_edges)?;
     // Four far corners enclose everything, so that no point added on a segment is ever on the
     // convex hull (rounding would make the hull concave there).
     for corner in enclosing_box(&all) {
@@ -255,11 +256,10 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
     // The other input points: those outside the domain are left out (in no triangle, they
     // constrain nothing).
     r.assign_regions(options);
-    for i in 0..n_input {
-        if !on_any[i] && first[i] as usize == i {
-            r.insert_if_inside(i as u32)?;
-        }
-    }
+    let free: Vec<u32> = (0..n_input as u32)
+        .filter(|&i| !on_any[i as usize] && first[i as usize] == i)
+        .collect();
+    r.insert_if_inside(&free)?;
     r.run(options)?;
     // In the output numbering the box corners (n_all..n_all + 4) are left out.
     let renumber = |v: u32| if v as usize >= n_all { v - 4 } else { v };

@@ -55,7 +55,7 @@ use std::collections::{BinaryHeap, HashMap, VecDeque};
 
 use super::classify::classify_with;
 use super::cloud::Cloud;
-use super::delaunay::{conflict, INFINITE};
+use super::delaunay::{conflict, hilbert_order, INFINITE};
 use super::exact::dot_sign;
 use super::input::Crossings;
 use crate::error::{Error, ErrorKind, Result};
@@ -247,11 +247,12 @@ impl Refiner {
     /// The triangulation `tri`/`adj` (live triangles of a [`super::delaunay::Delaunay2d`],
     /// compacted) of `points`, whose sub-segments `sub_edges` (point pairs with their input
     /// segment) are edges of it. `on_segment` gives the input segment of points added on
-    /// segments; `segments` are the input segments.
+    /// segments; `segments` are the input segments, `acute` their [`acute_apices`].
     pub fn new(
         points: Vec<[f64; 2]>,
         (tri, adj): (Vec<[u32; 3]>, Vec<[u32; 3]>),
         segments: Vec<[u32; 2]>,
+        acute: Vec<bool>,
         on_segment: Vec<u32>,
         sub_edges: &[[u32; 2]],
     ) -> Result<Self> {
@@ -264,7 +265,6 @@ impl Refiner {
             corner_pairs.insert((s[0].min(s[1]), s[0].max(s[1])), k as u32);
         }
         let count = tri.len();
-        let acute = acute_apices(&points, &segments);
         let mut r = Refiner {
             points,
             on_segment,
@@ -376,34 +376,37 @@ impl Refiner {
         Ok(())
     }
 
-    /// Inserts the point `i` of the point list (not yet a vertex, inside the convex hull of
-    /// the vertices) without crossing a sub-segment, if it lies in the domain; returns whether
-    /// it does.
-    pub fn insert_if_inside(&mut self, i: u32) -> Result<bool> {
-        let p = self.points[i as usize];
-        let start = (0..self.tri.len() as u32)
-            .find(|&t| self.alive[t as usize] && !self.tri[t as usize].contains(&INFINITE));
-        let walk = start.map(|t| self.walk(t, &p, false));
-        if let Some(Walk::Inside(t)) = walk {
-            if self.region[t as usize] == 0 {
-                return Ok(false);
+    /// Inserts the points `points` of the point list (not yet vertices, inside the convex hull
+    /// of the vertices) that lie in the domain, without crossing a sub-segment, along a Hilbert
+    /// curve: each is located by a walk from the triangle of the one before.
+    pub fn insert_if_inside(&mut self, points: &[u32]) -> Result<()> {
+        let coords: Vec<[f64; 2]> = points.iter().map(|&i| self.points[i as usize]).collect();
+        let mut start = self.any_finite();
+        for k in hilbert_order(&coords) {
+            let (i, p) = (points[k as usize], coords[k as usize]);
+            let walk = start.map(|t| self.walk(t, &p, false));
+            if let Some(Walk::Inside(t)) = walk {
+                start = Some(t);
+                if self.region[t as usize] == 0 {
+                    continue;
+                }
             }
+            let cavity = match walk {
+                Some(Walk::Inside(t))
+                    if !self.tri[t as usize]
+                        .iter()
+                        .any(|&v| self.points[v as usize] == p) =>
+                {
+                    self.cavity(&[t], &p)
+                }
+                _ => None,
+            };
+            let Some((cavity, boundary)) = cavity else {
+                return Err(Error::internal(format!("point {i} could not be inserted")));
+            };
+            start = self.fill(i, &cavity, &boundary).first().copied();
         }
-        let cavity = match walk {
-            Some(Walk::Inside(t))
-                if !self.tri[t as usize]
-                    .iter()
-                    .any(|&v| self.points[v as usize] == p) =>
-            {
-                self.cavity(&[t], &p)
-            }
-            _ => None,
-        };
-        let Some((cavity, boundary)) = cavity else {
-            return Err(Error::internal(format!("point {i} could not be inserted")));
-        };
-        self.fill(i, &cavity, &boundary);
-        Ok(true)
+        Ok(())
     }
 
     /// Assigns regions: 0 to the outside (reached from an infinite triangle without crossing
@@ -429,18 +432,21 @@ impl Refiner {
                 }
             }
         }
-        for h in &options.holes {
-            if let Some(t) = self.locate_anywhere(*h) {
-                self.flood(t, 0);
-            }
+        let seeds: Vec<[f64; 2]> = (options.holes.iter().copied())
+            .chain(options.regions.iter().map(|r| r.seed))
+            .collect();
+        let found = self.locate_all(&seeds);
+        let (holes, regions) = found.split_at(options.holes.len());
+        for &t in holes.iter().flatten() {
+            self.flood(t, 0);
         }
-        for r in &options.regions {
+        for (r, &t) in options.regions.iter().zip(regions) {
             let area = if r.max_area > 0.0 {
                 r.max_area
             } else {
                 options.max_area
             };
-            if let Some(t) = self.locate_anywhere(r.seed) {
+            if let Some(t) = t {
                 if self.region[t as usize] != 0 {
                     self.region_table.push((r.label, area));
                     let id = (self.region_table.len() - 1) as u32;
@@ -467,14 +473,27 @@ impl Refiner {
         }
     }
 
-    /// A finite triangle containing `p` (closed), by a walk that ignores sub-segments.
-    fn locate_anywhere(&mut self, p: [f64; 2]) -> Option<u32> {
-        let start = (0..self.tri.len() as u32)
-            .find(|&t| self.alive[t as usize] && !self.tri[t as usize].contains(&INFINITE))?;
-        match self.walk(start, &p, false) {
-            Walk::Inside(t) => Some(t),
-            _ => None,
+    /// A live finite triangle.
+    fn any_finite(&self) -> Option<u32> {
+        (0..self.tri.len() as u32)
+            .find(|&t| self.alive[t as usize] && !self.tri[t as usize].contains(&INFINITE))
+    }
+
+    /// A finite triangle containing each point of `seeds` (closed), or `None` outside the
+    /// triangulation: walks that ignore sub-segments, the seeds taken along a Hilbert curve,
+    /// each walk from the triangle of the seed before.
+    fn locate_all(&mut self, seeds: &[[f64; 2]]) -> Vec<Option<u32>> {
+        let mut found = vec![None; seeds.len()];
+        let Some(mut start) = self.any_finite() else {
+            return found;
+        };
+        for i in hilbert_order(seeds) {
+            if let Walk::Inside(t) = self.walk(start, &seeds[i as usize], false) {
+                found[i as usize] = Some(t);
+                start = t;
+            }
         }
+        found
     }
 
     /// A visibility walk from the finite triangle `start` towards `p`. With `blocked`, the
@@ -651,7 +670,8 @@ impl Refiner {
 
     /// Replaces the cavity by the fan from point `i`; returns the new triangles.
     fn fill(&mut self, i: u32, cavity: &[u32], boundary: &[(u32, usize)]) -> Vec<u32> {
-        let mut starts = HashMap::with_capacity(boundary.len());
+        // The new triangle from each boundary vertex, sorted by that vertex.
+        let mut starts = Vec::with_capacity(boundary.len());
         let mut created = Vec::with_capacity(boundary.len());
         for &(t, k) in boundary {
             let v = self.tri[t as usize];
@@ -668,12 +688,13 @@ impl Refiner {
                 .position(|&x| x == t)
                 .unwrap_or(0);
             self.adj[n as usize][back] = new;
-            starts.insert(a, new);
+            starts.push((a, new));
             created.push(new);
         }
+        starts.sort_unstable();
         for &new in &created {
             let b = self.tri[new as usize][1];
-            let next = starts[&b];
+            let next = starts[starts.partition_point(|&(a, _)| a < b)].1;
             self.adj[new as usize][0] = next;
             self.adj[next as usize][1] = new;
         }
@@ -1105,13 +1126,13 @@ fn admissible(cloud: &Cloud, a: u32, b: u32) -> bool {
 /// Ruppert's split points rather than Pébay's projections, which leave short sub-segments
 /// near acute angles that refinement would then propagate); the sub-segments are then edges of
 /// every Delaunay triangulation of those points. Returns the sub-segments with their input
-/// segment and the input segment of each added point.
+/// segment and the input segment of each added point. `acute` is [`acute_apices`].
 pub fn split_segments(
     cloud: &mut Cloud,
     segments: &[[u32; 2]],
+    acute: &[bool],
     limit: usize,
 ) -> Result<(Vec<[u32; 3]>, Vec<u32>)> {
-    let acute = acute_apices(&cloud.points, segments);
     let apex = |v: u32| acute.get(v as usize).copied().unwrap_or(false);
     let mut stack: Vec<[u32; 3]> = segments
         .iter()
@@ -1119,23 +1140,25 @@ pub fn split_segments(
         .rev()
         .map(|(k, s)| [s[0], s[1], k as u32])
         .collect();
-    let mut done: Vec<[u32; 3]> = Vec::new();
+    // Accepted sub-segments, with the number of points they were accepted against.
+    let mut done: Vec<([u32; 3], usize)> = Vec::new();
     let mut on_segment = Vec::new();
     loop {
         let Some([a, b, s]) = stack.pop() else {
             // Points added later may have entered the disks of earlier sub-segments.
-            let (clean, dirty): (Vec<[u32; 3]>, Vec<[u32; 3]>) = done
+            let now = cloud.points.len();
+            let (clean, dirty): (Vec<_>, Vec<_>) = done
                 .into_iter()
-                .partition(|e| admissible(cloud, e[0], e[1]));
-            done = clean;
+                .partition(|&(e, seen)| seen == now || admissible(cloud, e[0], e[1]));
+            done = clean.into_iter().map(|(e, _)| (e, now)).collect();
             if dirty.is_empty() {
                 break;
             }
-            stack = dirty.into_iter().rev().collect();
+            stack = dirty.into_iter().rev().map(|(e, _)| e).collect();
             continue;
         };
         if admissible(cloud, a, b) {
-            done.push([a, b, s]);
+            done.push(([a, b, s], cloud.points.len()));
             continue;
         }
         if on_segment.len() >= limit {
@@ -1156,5 +1179,5 @@ pub fn split_segments(
         stack.push([i, b, s]);
         stack.push([a, i, s]);
     }
-    Ok((done, on_segment))
+    Ok((done.into_iter().map(|(e, _)| e).collect(), on_segment))
 }
