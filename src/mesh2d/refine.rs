@@ -35,7 +35,13 @@
 //!      the bound) when the angle is bad and that is nearer than the circumcenter, else at its
 //!      circumcenter. A point that would encroach sub-segments, or that lies beyond one in
 //!      its diametral disk, is not inserted: they are split instead, and the triangle is
-//!      reconsidered;
+//!      reconsidered. Bad triangles are taken smallest first, by buckets of their shortest
+//!      edge (a factor `sqrt(2)` of squared length per bucket), first in, first out within a
+//!      bucket: the order of Shewchuk's Triangle. Small features are resolved first and the
+//!      mesh grows away from them; taking the worst angle first instead sends off-centers
+//!      from every short boundary edge of a finely sampled curve, rows of points parallel to
+//!      it at its own spacing that the mesh cannot grade away from (29% more triangles than
+//!      CGAL's circumcenters on a 10^4-edge star polygon at 25 degrees, 9% more now);
 //!    - a triangle bad by angle only whose shortest edge joins two points on segments meeting
 //!      at an end at an angle below 60 degrees, at equal distances from it (within
 //!      [`SHELL_TOLERANCE`]), is skinny because of a small input angle: splitting it would not
@@ -183,22 +189,22 @@ enum Walk {
     Lost,
 }
 
-/// A bad triangle in the queue: worst (smallest angle) first, then by id.
-#[derive(PartialEq)]
+/// A bad triangle in the queue, taken smallest first: by the [`length_bucket`] of its shortest
+/// edge, then first in, first out (`seq`, the order of queueing).
+#[derive(PartialEq, Eq)]
 struct Bad {
-    angle: f64,
+    bucket: i32,
+    seq: u64,
     t: u32,
     v: [u32; 3],
 }
 
-impl Eq for Bad {}
-
 impl Ord for Bad {
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {
         other
-            .angle
-            .total_cmp(&self.angle)
-            .then(other.t.cmp(&self.t))
+            .bucket
+            .cmp(&self.bucket)
+            .then(other.seq.cmp(&self.seq))
     }
 }
 
@@ -239,6 +245,8 @@ pub struct Refiner {
     off_centers: bool,
     encroached: VecDeque<(u32, u32)>,
     bad: BinaryHeap<Bad>,
+    /// Bad triangles queued so far.
+    queued: u64,
     rng: u32,
     pub report: RefinementReport,
 }
@@ -287,6 +295,7 @@ impl Refiner {
             off_centers: true,
             encroached: VecDeque::new(),
             bad: BinaryHeap::new(),
+            queued: 0,
             rng: 0x2545_f491,
             report: RefinementReport::default(),
         };
@@ -799,7 +808,8 @@ impl Refiner {
         Ok(())
     }
 
-    /// The smallest angle of triangle `t` (degrees), its area, and whether it is bad.
+    /// The squared length of the shortest edge of triangle `t`, its area, and whether it is
+    /// bad.
     fn quality(&self, t: u32) -> (f64, f64, bool) {
         let v = self.tri[t as usize];
         let [a, b, c] = v.map(|x| *self.p(x));
@@ -814,22 +824,23 @@ impl Refiner {
         } else {
             (ca, ab, bc)
         };
-        let cos = ((x + y - short) / (2.0 * (x * y).sqrt())).clamp(-1.0, 1.0);
-        let angle = cos.acos().to_degrees();
+        let cos = (x + y - short) / (2.0 * (x * y).sqrt());
         let max_area = self.region_table[self.region[t as usize] as usize].1;
         let bad =
             (self.min_angle > 0.0 && cos > self.cos_bound) || (max_area > 0.0 && area > max_area);
-        (angle, area, bad)
+        (short, area, bad)
     }
 
     fn push_if_bad(&mut self, t: u32) {
         if self.region[t as usize] == 0 {
             return;
         }
-        let (angle, _, bad) = self.quality(t);
+        let (short, _, bad) = self.quality(t);
         if bad {
+            self.queued += 1;
             self.bad.push(Bad {
-                angle,
+                bucket: length_bucket(short),
+                seq: self.queued,
                 t,
                 v: self.tri[t as usize],
             });
@@ -1071,6 +1082,20 @@ impl Refiner {
         }
         out
     }
+}
+
+/// The queue bucket of a squared length: `floor(2 log2(square))`, from the bits of the number
+/// (exact, the same on every platform): squared lengths within a factor `sqrt(2)` of each
+/// other share a bucket (Triangle's bucketing).
+fn length_bucket(square: f64) -> i32 {
+    let bits = square.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i32;
+    if exponent == 0 {
+        // Zero or subnormal: below every normal square.
+        return -2 * 1023;
+    }
+    let mantissa = f64::from_bits((bits & ((1 << 52) - 1)) | (1023 << 52));
+    2 * (exponent - 1023) + i32::from(mantissa >= std::f64::consts::SQRT_2)
 }
 
 /// For each point of `points`, whether two of the `segments` at it form an acute angle.
