@@ -46,6 +46,11 @@ impl Cloud {
         }
     }
 
+    /// The points, the grid dropped.
+    pub fn into_points(self) -> Vec<[f64; 2]> {
+        self.points
+    }
+
     /// Adds a point; returns its index.
     pub fn push(&mut self, p: [f64; 2]) -> u32 {
         let i = self.points.len() as u32;

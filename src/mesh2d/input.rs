@@ -8,8 +8,6 @@
 //! as input segments are, a failure there being a rounding limit (`ErrorKind::Limit`).
 //! T-junctions (a segment end on another segment) and collinear overlaps stay errors.
 
-use std::collections::HashSet;
-
 use super::cloud::Cloud;
 use super::crossing::split_at_crossings;
 use super::exact::dot_sign;
@@ -124,11 +122,11 @@ pub fn segments(
             if zero.len() == 1 { "s" } else { "ve" }
         )));
     }
-    let mut seen = HashSet::new();
+    let keep = first_of_each(&merged, n);
     let mut kept = Vec::new();
     let mut origin = Vec::new();
     for (k, s) in merged.iter().enumerate() {
-        if seen.insert((s[0].min(s[1]), s[0].max(s[1]))) {
+        if keep[k] {
             kept.push(*s);
             origin.push(k as u32);
         }
@@ -173,6 +171,35 @@ pub fn segments(
         origin: piece_origin,
         intersections,
     })
+}
+
+/// For each segment of `segs` (ends below `n`, in either order), whether it is the first with
+/// its pair of ends: the segments grouped by smaller end (a counting sort), each group sorted
+/// by larger end then index.
+fn first_of_each(segs: &[[u32; 2]], n: usize) -> Vec<bool> {
+    let mut start = vec![0usize; n + 1];
+    for s in segs {
+        start[s[0].min(s[1]) as usize + 1] += 1;
+    }
+    for i in 1..start.len() {
+        start[i] += start[i - 1];
+    }
+    let mut by_end = vec![(0u32, 0u32); segs.len()];
+    let mut next = start.clone();
+    for (k, s) in segs.iter().enumerate() {
+        let low = s[0].min(s[1]) as usize;
+        by_end[next[low]] = (s[0].max(s[1]), k as u32);
+        next[low] += 1;
+    }
+    let mut first = vec![false; segs.len()];
+    for i in 0..n {
+        let group = &mut by_end[start[i]..start[i + 1]];
+        group.sort_unstable();
+        for same in group.chunk_by(|x, y| x.0 == y.0) {
+            first[same[0].1 as usize] = true;
+        }
+    }
+    first
 }
 
 /// A message for every point from `from` on (the rounded intersection points) that has the

@@ -221,11 +221,17 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         on_any[s[0] as usize] = true;
         on_any[s[1] as usize] = true;
     }
-    let mut cloud = grid_of(&points, segs.len(), |i| on_any[i]);
+    // The grid of the checks indexes the points that are their own first copy; when those
+    // are all on segments, it is the grid this phase needs.
+    let mut cloud = if (0..n_input).all(|i| on_any[i] || first[i] as usize != i) {
+        checked
+    } else {
+        grid_of(&points, segs.len(), |i| on_any[i])
+    };
     let limit = ADDED_POINTS_PER_ITEM.saturating_mul(n_input + segs.len());
     let acute = refine::acute_apices(&points, &segs);
     let (subs, added_on) = refine::split_segments(&mut cloud, &segs, &acute, limit)?;
-    let all = cloud.points;
+    let all = cloud.into_points();
     let n_all = all.len();
     let dt = Delaunay2d::of_subset(&all, |i| i as usize >= n_input || on_any[i as usize]).map_err(
         |e| {
@@ -236,6 +242,7 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         },
     )?;
     let compact = dt.compact();
+    drop(dt);
     let mut duplicate_of = first.clone();
     duplicate_of.extend((n_input as u32)..(n_all as u32));
     let mut on_segment = vec![u32::MAX; n_input];
@@ -247,10 +254,11 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         dims[s[1] as usize] = DIMENSION_CORNER;
     }
     dims[n_input..].fill(DIMENSION_SEGMENT);
-    let mut r = Refiner::new(all.clone(), compact, segs, acute, on_segment, &sub_edges)?;
+    let corners = enclosing_box(&all);
+    let mut r = Refiner::new(all, compact, segs, acute, on_segment, &sub_edges)?;
     // Four far corners enclose everything, so that no point added on a segment is ever on the
     // convex hull (rounding would make the hull concave there).
-    for corner in enclosing_box(&all) {
+    for corner in corners {
         r.insert_outside(corner)?;
     }
     // The other input points: those outside the domain are left out (in no triangle, they

@@ -57,7 +57,7 @@
 //! Delaunay-admissible) — the result is still conforming, and every triangle of the domain has
 //! an empty circumcircle.
 
-use std::collections::{BinaryHeap, HashMap, VecDeque};
+use std::collections::{BinaryHeap, VecDeque};
 
 use super::classify::classify_with;
 use super::cloud::Cloud;
@@ -225,7 +225,6 @@ pub struct Refiner {
     acute: Vec<bool>,
     /// The input segments (point pairs).
     pub segments: Vec<[u32; 2]>,
-    corner_pairs: HashMap<(u32, u32), u32>,
     tri: Vec<[u32; 3]>,
     adj: Vec<[u32; 3]>,
     /// Bit `k`: the edge opposite slot `k` is a sub-segment.
@@ -266,11 +265,9 @@ impl Refiner {
     ) -> Result<Self> {
         let n = points.len();
         let mut incident = vec![Vec::new(); n];
-        let mut corner_pairs = HashMap::new();
         for (k, s) in segments.iter().enumerate() {
             incident[s[0] as usize].push(k as u32);
             incident[s[1] as usize].push(k as u32);
-            corner_pairs.insert((s[0].min(s[1]), s[0].max(s[1])), k as u32);
         }
         let count = tri.len();
         let mut r = Refiner {
@@ -279,7 +276,6 @@ impl Refiner {
             incident,
             acute,
             segments,
-            corner_pairs,
             tri,
             adj,
             seg: vec![0; count],
@@ -729,9 +725,12 @@ impl Refiner {
                 return s;
             }
         }
-        self.corner_pairs
-            .get(&(a.min(b), a.max(b)))
+        // Both ends are input points: the segment between them.
+        let incident = self.incident.get(a as usize).map_or(&[][..], Vec::as_slice);
+        incident
+            .iter()
             .copied()
+            .find(|&k| self.segments[k as usize].contains(&b))
             .unwrap_or(NONE)
     }
 
