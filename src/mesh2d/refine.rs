@@ -219,8 +219,8 @@ pub struct Refiner {
     pub points: Vec<[f64; 2]>,
     /// Input segment (index into `segments`) each point lies inside of; NONE for others.
     pub on_segment: Vec<u32>,
-    /// Input segments at each input point (empty for others).
-    incident: Vec<Vec<u32>>,
+    /// Input segments at each input point (none for others).
+    incident: Incidence,
     /// Whether each input point is the apex of an acute angle between two segments.
     acute: Vec<bool>,
     /// The input segments (point pairs).
@@ -264,11 +264,7 @@ impl Refiner {
         sub_edges: &[[u32; 2]],
     ) -> Result<Self> {
         let n = points.len();
-        let mut incident = vec![Vec::new(); n];
-        for (k, s) in segments.iter().enumerate() {
-            incident[s[0] as usize].push(k as u32);
-            incident[s[1] as usize].push(k as u32);
-        }
+        let incident = Incidence::new(n, &segments);
         let count = tri.len();
         let mut r = Refiner {
             points,
@@ -668,7 +664,6 @@ impl Refiner {
     fn push_point(&mut self, p: [f64; 2], on: u32) -> u32 {
         self.points.push(p);
         self.on_segment.push(on);
-        self.incident.push(Vec::new());
         self.vtri.push(NONE);
         (self.points.len() - 1) as u32
     }
@@ -726,8 +721,8 @@ impl Refiner {
             }
         }
         // Both ends are input points: the segment between them.
-        let incident = self.incident.get(a as usize).map_or(&[][..], Vec::as_slice);
-        incident
+        self.incident
+            .of(a)
             .iter()
             .copied()
             .find(|&k| self.segments[k as usize].contains(&b))
@@ -847,12 +842,12 @@ impl Refiner {
     }
 
     /// The input segments point `v` lies on (inside or at an end).
-    fn segments_at(&self, v: u32) -> Vec<u32> {
-        let s = self.on_segment[v as usize];
-        if s != NONE {
-            vec![s]
+    fn segments_at(&self, v: u32) -> &[u32] {
+        let s = &self.on_segment[v as usize];
+        if *s != NONE {
+            std::slice::from_ref(s)
         } else {
-            self.incident[v as usize].clone()
+            self.incident.of(v)
         }
     }
 
@@ -861,8 +856,8 @@ impl Refiner {
     /// a small input angle).
     fn on_common_shell(&self, p: u32, q: u32) -> bool {
         let (sp, sq) = (self.segments_at(p), self.segments_at(q));
-        for &s in &sp {
-            for &r in &sq {
+        for &s in sp {
+            for &r in sq {
                 if s == r {
                     continue;
                 }
@@ -1099,22 +1094,58 @@ fn length_bucket(square: f64) -> i32 {
 
 /// For each point of `points`, whether two of the `segments` at it form an acute angle.
 pub fn acute_apices(points: &[[f64; 2]], segments: &[[u32; 2]]) -> Vec<bool> {
-    let mut far: Vec<Vec<u32>> = vec![Vec::new(); points.len()];
-    for s in segments {
-        far[s[0] as usize].push(s[1]);
-        far[s[1] as usize].push(s[0]);
-    }
-    (0..points.len())
+    let incident = Incidence::new(points.len(), segments);
+    (0..points.len() as u32)
         .map(|z| {
-            let list = &far[z];
+            let far = |k: u32| {
+                let s = segments[k as usize];
+                &points[(if s[0] == z { s[1] } else { s[0] }) as usize]
+            };
+            let list = incident.of(z);
             (0..list.len()).any(|i| {
-                list[i + 1..].iter().any(|&j| {
-                    let (a, b) = (&points[list[i] as usize], &points[j as usize]);
-                    dot_sign(a, b, &points[z]) == Sign::Positive
-                })
+                list[i + 1..]
+                    .iter()
+                    .any(|&j| dot_sign(far(list[i]), far(j), &points[z as usize]) == Sign::Positive)
             })
         })
         .collect()
+}
+
+/// The segments at each point, in increasing order, in one array.
+struct Incidence {
+    start: Vec<u32>,
+    list: Vec<u32>,
+}
+
+impl Incidence {
+    /// For the points `0..n` and the segments `segments` (ends below `n`).
+    fn new(n: usize, segments: &[[u32; 2]]) -> Self {
+        let mut start = vec![0u32; n + 1];
+        for s in segments {
+            start[s[0] as usize + 1] += 1;
+            start[s[1] as usize + 1] += 1;
+        }
+        for i in 1..start.len() {
+            start[i] += start[i - 1];
+        }
+        let mut list = vec![0u32; 2 * segments.len()];
+        let mut next = start.clone();
+        for (k, s) in segments.iter().enumerate() {
+            for v in s {
+                list[next[*v as usize] as usize] = k as u32;
+                next[*v as usize] += 1;
+            }
+        }
+        Incidence { start, list }
+    }
+
+    /// The segments at point `v` (none past the points of [`Incidence::new`]).
+    fn of(&self, v: u32) -> &[u32] {
+        match (self.start.get(v as usize), self.start.get(v as usize + 1)) {
+            (Some(&a), Some(&b)) => &self.list[a as usize..b as usize],
+            _ => &[],
+        }
+    }
 }
 
 /// Where to split the sub-segment `[a b]`: at the power of two nearest to half its length
