@@ -116,7 +116,7 @@ pub fn conforming_2d_with(
     let points = input::points(xy)?;
     let c = conform(points, segments, options)?;
     let dt = Delaunay2d::new(&c.all)?;
-    let edges = ordered_sub_edges(&c.sub, &c.segs, &c.origin, &c.all, dt.duplicate_of());
+    let edges = ordered_sub_edges(&c.sub, &c.segs, &c.all, dt.duplicate_of());
     let mesh = mesh_of(&c.all, &dt, c.dims, edges);
     validate_mesh(&mesh).map_err(|m| Error::internal(format!("conforming 2D result: {m}")))?;
     Ok(Conforming2d {
@@ -134,9 +134,8 @@ struct Conformed {
     intersections: usize,
     /// Input points then added points.
     all: Vec<[f64; 2]>,
-    /// Kept segments (duplicates merged) and the input segment each comes from.
+    /// Kept segments (duplicates merged), by input segment and along it.
     segs: Vec<[u32; 2]>,
-    origin: Vec<u32>,
     dims: Vec<i8>,
     sub: Subdivision,
 }
@@ -150,8 +149,8 @@ fn conform(
     let mut cloud = cloud_of(&points, &first, segments.len() / 2);
     let input::Segments {
         segs,
-        origin,
         intersections,
+        ..
     } = input::segments(segments, &points, &first, &mut cloud, options.crossings)?;
     let limit = ADDED_POINTS_PER_ITEM.saturating_mul(points.len() + segs.len());
     let mut sub = Subdivision::new(cloud, &segs, limit, options.algorithm);
@@ -168,7 +167,6 @@ fn conform(
         intersections,
         all,
         segs,
-        origin,
         dims,
         sub,
     })
@@ -207,8 +205,8 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
     let mut checked = cloud_of(&points, &first, segments.len() / 2);
     let input::Segments {
         segs,
-        origin,
         intersections,
+        ..
     } = input::segments(segments, &points, &first, &mut checked, options.crossings)?;
     // The intersection points of split segments count as input points from here on.
     points.extend_from_slice(&checked.points[n_caller..]);
@@ -295,7 +293,7 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         .into_iter()
         .map(|(a, b, s)| (renumber(a), renumber(b), s))
         .collect();
-    let edges = ordered_segments(&subs, &r.segments, &origin, &points);
+    let edges = ordered_segments(&subs, &r.segments, &points);
     let mut full_duplicate_of = duplicate_of;
     full_duplicate_of.extend((n_all as u32)..(points.len() as u32));
     let mesh = Mesh {
@@ -351,30 +349,32 @@ fn hull_segments(points: &[[f64; 2]]) -> Result<Vec<u32>> {
 
 /// Sub-segments `(a, b, segment)` ordered by input segment and along it from its first end,
 /// oriented that way (the segments `segs` of one input segment are consecutive, in order
-/// along it).
-fn ordered_segments(
-    subs: &[(u32, u32, u32)],
-    segs: &[[u32; 2]],
-    origin: &[u32],
-    points: &[[f64; 2]],
-) -> Vec<u32> {
-    let mut keyed: Vec<(u32, u32, f64, u32, u32)> = subs
-        .iter()
-        .map(|&(a, b, s)| {
-            let [p, q] = segs[s as usize].map(|i| points[i as usize]);
-            let along = |i: u32| {
-                let x = points[i as usize];
-                (x[0] - p[0]) * (q[0] - p[0]) + (x[1] - p[1]) * (q[1] - p[1])
-            };
-            let (a, b) = if along(a) <= along(b) { (a, b) } else { (b, a) };
-            (origin[s as usize], s, along(a), a, b)
-        })
-        .collect();
-    keyed.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)).then(x.2.total_cmp(&y.2)));
-    keyed
-        .into_iter()
-        .flat_map(|(_, _, _, a, b)| [a, b])
-        .collect()
+/// along it, so that the order of the input segments is that of `segs`: the sub-segments are
+/// grouped by segment with a counting sort, then sorted along it within a group).
+fn ordered_segments(subs: &[(u32, u32, u32)], segs: &[[u32; 2]], points: &[[f64; 2]]) -> Vec<u32> {
+    let mut start = vec![0usize; segs.len() + 1];
+    for &(_, _, s) in subs {
+        start[s as usize + 1] += 1;
+    }
+    for k in 1..start.len() {
+        start[k] += start[k - 1];
+    }
+    let mut keyed = vec![(0.0, 0u32, 0u32); subs.len()];
+    let mut next = start.clone();
+    for &(a, b, s) in subs {
+        let [p, q] = segs[s as usize].map(|i| points[i as usize]);
+        let along = |i: u32| {
+            let x = points[i as usize];
+            (x[0] - p[0]) * (q[0] - p[0]) + (x[1] - p[1]) * (q[1] - p[1])
+        };
+        let (a, b) = if along(a) <= along(b) { (a, b) } else { (b, a) };
+        keyed[next[s as usize]] = (along(a), a, b);
+        next[s as usize] += 1;
+    }
+    for k in 0..segs.len() {
+        keyed[start[k]..start[k + 1]].sort_by(|x, y| x.0.total_cmp(&y.0));
+    }
+    keyed.into_iter().flat_map(|(_, a, b)| [a, b]).collect()
 }
 
 /// The grid of the input points, copies of an earlier point left out of the buckets.
@@ -410,12 +410,11 @@ fn grid_of(points: &[[f64; 2]], n_segments: usize, indexed: impl Fn(usize) -> bo
 fn ordered_sub_edges(
     sub: &Subdivision,
     segs: &[[u32; 2]],
-    origin: &[u32],
     points: &[[f64; 2]],
     duplicate_of: &[u32],
 ) -> Vec<u32> {
     let subs: Vec<(u32, u32, u32)> = sub.sub_edges().collect();
-    let mut edges = ordered_segments(&subs, segs, origin, points);
+    let mut edges = ordered_segments(&subs, segs, points);
     for v in &mut edges {
         *v = duplicate_of[*v as usize];
     }
