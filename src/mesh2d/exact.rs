@@ -82,6 +82,17 @@ pub fn dot_sign(a: &[f64; 2], b: &[f64; 2], q: &[f64; 2]) -> Sign {
 #[cold]
 #[inline(never)]
 fn exact_dot_sign(a: &[f64; 2], b: &[f64; 2], q: &[f64; 2]) -> Sign {
+    // A product with a zero factor (a right angle along the axes, points on a grid line) is
+    // zero: the sign is that of the other product, the product of the signs of its factors.
+    let axis_sign = |k: usize| {
+        let side = |x: f64| Sign::of(x - q[k]);
+        side(a[k]) * side(b[k])
+    };
+    for k in 0..2 {
+        if a[k] == q[k] || b[k] == q[k] {
+            return axis_sign(1 - k);
+        }
+    }
     let coords = [a[0], a[1], b[0], b[1], q[0], q[1]];
     if coords.iter().all(|&x| expansion_safe(x)) {
         return expansion_dot_sign(a, b, q);
@@ -272,7 +283,8 @@ mod tests {
             let scale = [1.0, 1e-3, 1e7, 0.1][round % 4];
             let a = [uniform(scale), uniform(scale)];
             let b = [uniform(scale), uniform(scale)];
-            // q on the small circle of [a b] (up to rounding), on a grid line through a, or free.
+            // q on the small circle of [a b] (up to rounding), on grid lines through a and b, or
+            // free.
             let q = match round % 3 {
                 0 => {
                     let t = uniform(std::f64::consts::TAU);
@@ -282,7 +294,8 @@ mod tests {
                     );
                     [c[0] + r * t.cos(), c[1] + r * t.sin()]
                 }
-                1 => [a[0], b[1]],
+                1 if round % 2 == 0 => [a[0], b[1]],
+                1 => [uniform(scale), b[1]],
                 _ => [uniform(scale), uniform(scale)],
             };
             let expected = bigint_dot_sign(&a, &b, &q);

@@ -10,7 +10,6 @@
 
 use super::cloud::Cloud;
 use super::crossing::split_at_crossings;
-use super::exact::dot_sign;
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::{orient2d, Sign};
 use crate::triangulation::MAX_COORDINATE;
@@ -217,7 +216,9 @@ fn coincident_points(cloud: &Cloud, from: usize) -> Vec<String> {
     found
 }
 
-/// A message for every point on the open segment of a segment.
+/// A message for every point on the open segment of a segment: collinear with its ends, in
+/// their bounding box, and at neither (the candidates are those of the grid buckets of the
+/// box).
 fn points_on_segments(
     segs: &[[u32; 2]],
     origin: &[u32],
@@ -227,16 +228,18 @@ fn points_on_segments(
     let mut found = Vec::new();
     for (k, s) in segs.iter().enumerate() {
         let (a, b) = (&points[s[0] as usize], &points[s[1] as usize]);
-        for q in cloud.in_small_disk(s[0], s[1]) {
+        let lo = [a[0].min(b[0]), a[1].min(b[1])];
+        let hi = [a[0].max(b[0]), a[1].max(b[1])];
+        cloud.candidates(lo, hi, |q| {
             let p = &points[q as usize];
             if p != a
                 && p != b
+                && (0..2).all(|j| lo[j] <= p[j] && p[j] <= hi[j])
                 && orient2d(a, b, p) == Sign::Zero
-                && dot_sign(a, b, p) == Sign::Negative
             {
                 found.push(format!("point {q} lies on segment {}", origin[k]));
             }
-        }
+        });
     }
     found
 }
