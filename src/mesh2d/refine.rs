@@ -40,8 +40,9 @@
 //!      bucket: the order of Shewchuk's Triangle. Small features are resolved first and the
 //!      mesh grows away from them; taking the worst angle first instead sends off-centers
 //!      from every short boundary edge of a finely sampled curve, rows of points parallel to
-//!      it at its own spacing that the mesh cannot grade away from (29% more triangles than
-//!      CGAL's circumcenters on a 10^4-edge star polygon at 25 degrees, 9% more now);
+//!      it at its own spacing that the mesh cannot grade away from (on a 10^4-edge star
+//!      polygon at 25 degrees: 29% more triangles than CGAL's circumcenters, against 9% more
+//!      in this order);
 //!    - a triangle bad by angle only whose shortest edge joins two points on segments meeting
 //!      at an end at an angle below 60 degrees, at equal distances from it (within
 //!      [`SHELL_TOLERANCE`]), is skinny because of a small input angle: splitting it would not
