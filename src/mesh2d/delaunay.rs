@@ -18,12 +18,11 @@
 //! insertion order. Points on the line of a hull edge are in conflict with its infinite
 //! triangle only when they lie strictly between its ends.
 //!
-//! The points are inserted in BRIO rounds, each along a Hilbert curve ([`brio_rounds`]: points
+//! The points are inserted in BRIO rounds, each along a Hilbert curve (`brio_rounds`: points
 //! along a curve would otherwise make a cavity of every insertion a long fan); the storage
-//! order of the triangles (hence
-//! of [`Delaunay2d::triangles`] and [`Delaunay2d::compact`]) follows from that order, from the
-//! walk, from the order in which each cavity is searched and from the reuse of freed slots,
-//! last freed first (the tests pin it).
+//! order of the triangles (hence of [`Delaunay2d::triangles`] and [`Delaunay2d::compact`])
+//! follows from that order, from the walk, from the order in which each cavity is searched
+//! and from the reuse of freed slots, last freed first (the tests pin it).
 //!
 //! Layout and costs: a triangle is one record of its vertices and neighbours; vertices are
 //! numbered in insertion order and their coordinates stored in that order, so that what one
