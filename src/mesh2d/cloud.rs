@@ -18,8 +18,15 @@ pub struct Cloud {
     scale: f64,
     nx: usize,
     ny: usize,
-    buckets: Vec<Vec<u32>>,
+    /// The buckets as lists threaded through the points: the last point added to each cell,
+    /// and for each point the one added to its cell before it (NONE ends a list; unindexed
+    /// points are in no list).
+    head: Vec<u32>,
+    next: Vec<u32>,
 }
+
+/// End of a bucket list.
+const NONE: u32 = u32::MAX;
 
 impl Cloud {
     /// A grid of about `cells` buckets over the box `[lo, hi]`, holding no point yet.
@@ -42,64 +49,88 @@ impl Cloud {
             scale,
             nx,
             ny,
-            buckets: vec![Vec::new(); nx * ny],
+            head: vec![NONE; nx * ny],
+            next: Vec::new(),
         }
+    }
+
+    /// The points, the grid dropped.
+    pub fn into_points(self) -> Vec<[f64; 2]> {
+        self.points
     }
 
     /// Adds a point; returns its index.
     pub fn push(&mut self, p: [f64; 2]) -> u32 {
         let i = self.points.len() as u32;
         let (cx, cy) = self.cell(&p);
-        self.buckets[cy * self.nx + cx].push(i);
+        let cell = &mut self.head[cy * self.nx + cx];
+        self.next.push(*cell);
+        *cell = i;
         self.points.push(p);
         i
     }
 
     /// Removes the last point added by [`Cloud::push`] (the last entry of its bucket).
     pub fn pop(&mut self) {
-        if let Some(p) = self.points.pop() {
+        if let (Some(p), Some(before)) = (self.points.pop(), self.next.pop()) {
             let (cx, cy) = self.cell(&p);
-            self.buckets[cy * self.nx + cx].pop();
+            let cell = &mut self.head[cy * self.nx + cx];
+            if *cell == self.points.len() as u32 {
+                *cell = before;
+            }
         }
     }
 
     /// Adds a point that queries never return (an input copy of an earlier point).
     pub fn push_unindexed(&mut self, p: [f64; 2]) -> u32 {
+        self.next.push(NONE);
         self.points.push(p);
         (self.points.len() - 1) as u32
     }
 
-    /// Calls `f` with every grid cell `(x, y)` that meets the box `[lo, hi]`.
-    pub fn cells_of_box(&self, lo: [f64; 2], hi: [f64; 2], mut f: impl FnMut((usize, usize))) {
+    /// The grid cells that meet the box `[lo, hi]`: `[x0, y0, x1, y1]`, the cells `(x, y)` with
+    /// `x0 <= x <= x1` and `y0 <= y <= y1`, numbered `y * columns + x` (see [`Cloud::columns`]).
+    pub fn cells_of_box(&self, lo: [f64; 2], hi: [f64; 2]) -> [usize; 4] {
         let (x0, y0) = self.cell(&lo);
         let (x1, y1) = self.cell(&hi);
-        for cy in y0..=y1 {
-            for cx in x0..=x1 {
-                f((cx, cy));
-            }
-        }
+        [x0, y0, x1, y1]
+    }
+
+    /// Columns of the grid; `columns * rows` cells.
+    pub fn columns(&self) -> usize {
+        self.nx
+    }
+
+    /// Cells of the grid.
+    pub fn cell_count(&self) -> usize {
+        self.nx * self.ny
     }
 
     fn cell(&self, p: &[f64; 2]) -> (usize, usize) {
         let axis = |k: usize, n: usize| {
-            let c = ((p[k] - self.lo[k]) * self.scale).floor();
-            if c.is_nan() || c < 0.0 {
-                0
-            } else {
+            let c = (p[k] - self.lo[k]) * self.scale;
+            // Truncation is the floor on nonnegative numbers; NaN and negatives go to 0.
+            if c >= 0.0 {
                 (c as usize).min(n - 1)
+            } else {
+                0
             }
         };
         (axis(0, self.nx), axis(1, self.ny))
     }
 
     /// Calls `f` with every point whose bucket meets the box `[lo, hi]` (a superset of the
-    /// points in the box).
+    /// points in the box), in no particular order.
     pub fn candidates(&self, lo: [f64; 2], hi: [f64; 2], mut f: impl FnMut(u32)) {
         let (x0, y0) = self.cell(&lo);
         let (x1, y1) = self.cell(&hi);
         for cy in y0..=y1 {
             for cx in x0..=x1 {
-                self.buckets[cy * self.nx + cx].iter().for_each(|&i| f(i));
+                let mut i = self.head[cy * self.nx + cx];
+                while i != NONE {
+                    f(i);
+                    i = self.next[i as usize];
+                }
             }
         }
     }

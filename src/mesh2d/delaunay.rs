@@ -18,10 +18,11 @@
 //! insertion order. Points on the line of a hull edge are in conflict with its infinite
 //! triangle only when they lie strictly between its ends.
 //!
-//! The points are inserted along a Hilbert curve; the storage order of the triangles (hence
-//! of [`Delaunay2d::triangles`] and [`Delaunay2d::compact`]) follows from that order, from the
-//! walk, from the order in which each cavity is searched and from the reuse of freed slots,
-//! last freed first (the tests pin it).
+//! The points are inserted in BRIO rounds, each along a Hilbert curve (`brio_rounds`: points
+//! along a curve would otherwise make a cavity of every insertion a long fan); the storage
+//! order of the triangles (hence of [`Delaunay2d::triangles`] and [`Delaunay2d::compact`])
+//! follows from that order, from the walk, from the order in which each cavity is searched
+//! and from the reuse of freed slots, last freed first (the tests pin it).
 //!
 //! Layout and costs: a triangle is one record of its vertices and neighbours; vertices are
 //! numbered in insertion order and their coordinates stored in that order, so that what one
@@ -48,6 +49,9 @@ const NONE: u32 = u32::MAX;
 /// [`hilbert_key`]).
 const HILBERT_BITS: u32 = 16;
 const _: () = assert!(HILBERT_BITS.is_multiple_of(4) && HILBERT_BITS <= 16);
+
+/// The first BRIO round has about this many points at least (see [`brio_rounds`]).
+const FIRST_ROUND: usize = 64;
 
 /// A triangle of the triangulation: its vertices and its neighbours.
 #[derive(Clone, Copy, Debug)]
@@ -112,7 +116,7 @@ impl<'a> Delaunay2d<'a> {
     pub fn of_subset(points: &'a [[f64; 2]], keep: impl Fn(u32) -> bool) -> Result<Self> {
         let (lo, hi) = bounding_box(points);
         let (first, unique) = first_along(points, &hilbert_sorted(points, lo, hi));
-        let label: Vec<u32> = unique.into_iter().filter(|&i| keep(i)).collect();
+        let label = brio_rounds(unique.into_iter().filter(|&i| keep(i)).collect());
         // Every insertion adds two triangles, and the slots its cavity frees are reused.
         let capacity = 2 * label.len() + 16;
         let vertices = label.len();
@@ -595,6 +599,42 @@ fn first_along(points: &[[f64; 2]], sorted: &[u64]) -> (Vec<u32>, Vec<u32>) {
     (first, unique)
 }
 
+/// The points of `hilbert` (indices, in Hilbert order) in biased randomized insertion order
+/// (BRIO, Amenta, Choi and Rote 2003): rounds of geometrically growing size, each in Hilbert
+/// order. A point is in the last round with probability 7/8, in the one before with 7/64, and
+/// so on, the first round taking the rest (about [`FIRST_ROUND`] to 8 times that many points);
+/// the draw is a hash of the point's index, so the order is a function of the indices. The
+/// rounds keep the expected cavity sizes of a random order (points along a curve inserted
+/// in curve order would each conflict with a long fan of triangles), the Hilbert order within
+/// a round keeps walks short.
+fn brio_rounds(hilbert: Vec<u32>) -> Vec<u32> {
+    let mut last = 0;
+    while hilbert.len() >> (3 * (last + 1)) >= FIRST_ROUND {
+        last += 1;
+    }
+    let round = |i: u32| {
+        let mut z = u64::from(i).wrapping_add(0x9e37_79b9_7f4a_7c15);
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        let level = (((z ^ (z >> 31)).trailing_zeros() / 3) as usize).min(last);
+        last - level
+    };
+    let rounds: Vec<u8> = hilbert.iter().map(|&i| round(i) as u8).collect();
+    let mut start = vec![0usize; last + 2];
+    for &r in &rounds {
+        start[r as usize + 1] += 1;
+    }
+    for r in 1..start.len() {
+        start[r] += start[r - 1];
+    }
+    let mut order = vec![0u32; hilbert.len()];
+    for (&i, &r) in hilbert.iter().zip(&rounds) {
+        order[start[r as usize]] = i;
+        start[r as usize] += 1;
+    }
+    order
+}
+
 /// The smallest box `[lo, hi]` containing `points`.
 fn bounding_box(points: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
@@ -607,10 +647,20 @@ fn bounding_box(points: &[[f64; 2]]) -> ([f64; 2], [f64; 2]) {
     (lo, hi)
 }
 
+/// The indices of `points` along a Hilbert curve over their bounding box (ties by index):
+/// consecutive points are close, so that walks from one to the next are short.
+pub fn hilbert_order(points: &[[f64; 2]]) -> Vec<u32> {
+    let (lo, hi) = bounding_box(points);
+    hilbert_sorted(points, lo, hi)
+        .into_iter()
+        .map(|x| x as u32)
+        .collect()
+}
+
 /// The points as `key << 32 | index`, `key` their distance along the Hilbert curve of
 /// [`HILBERT_BITS`] bits per axis over the square of side the longest side of their bounding
-/// box `lo`, `hi`, sorted (by key, then index): the insertion order, consecutive points close
-/// so that walks are short.
+/// box `lo`, `hi`, sorted (by key, then index): the order within each insertion round,
+/// consecutive points close so that walks are short.
 fn hilbert_sorted(points: &[[f64; 2]], lo: [f64; 2], hi: [f64; 2]) -> Vec<u64> {
     let side = (hi[0] - lo[0]).max(hi[1] - lo[1]);
     let scale = if side > 0.0 {
@@ -759,8 +809,9 @@ fn infinite_conflict<'a>(
 
 #[cfg(test)]
 mod tests {
-    //! The output of the triangulation, storage order included, is pinned by digests recorded
-    //! from the first implementation: faster versions must return the very same arrays.
+    //! The output of the triangulation, storage order included, is pinned by digests (recorded
+    //! when the insertion order became BRIO rounds): faster versions must return the very same
+    //! arrays.
 
     use super::*;
 
@@ -869,20 +920,20 @@ mod tests {
     #[test]
     fn output_is_pinned() {
         let random_5000 = [
-            7266733511350691420,
-            3018588063268334660,
+            18175973464611838678,
+            13645086053628140430,
             8360184612080058621,
         ];
         pinned("random 5000", &random(5000, 1), random_5000);
         let grid_60x45 = [
-            10692263968186970707,
-            13903305351444640834,
+            3073711055166546631,
+            17021012198431613808,
             11106632706369812180,
         ];
         pinned("grid 60x45", &grid(60, 45, [0.0, 0.0], 1.0), grid_60x45);
         let far_grid = [
-            11039683707364735046,
-            16231483669408021937,
+            10572167537825115336,
+            12058789718774953637,
             15035201911905487843,
         ];
         pinned("far grid", &grid(30, 30, [1e6, -3e5], 0.125), far_grid);

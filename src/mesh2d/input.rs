@@ -8,11 +8,8 @@
 //! as input segments are, a failure there being a rounding limit (`ErrorKind::Limit`).
 //! T-junctions (a segment end on another segment) and collinear overlaps stay errors.
 
-use std::collections::HashSet;
-
 use super::cloud::Cloud;
 use super::crossing::split_at_crossings;
-use super::exact::dot_sign;
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::{orient2d, Sign};
 use crate::triangulation::MAX_COORDINATE;
@@ -124,11 +121,11 @@ pub fn segments(
             if zero.len() == 1 { "s" } else { "ve" }
         )));
     }
-    let mut seen = HashSet::new();
+    let keep = first_of_each(&merged, n);
     let mut kept = Vec::new();
     let mut origin = Vec::new();
     for (k, s) in merged.iter().enumerate() {
-        if seen.insert((s[0].min(s[1]), s[0].max(s[1]))) {
+        if keep[k] {
             kept.push(*s);
             origin.push(k as u32);
         }
@@ -175,6 +172,35 @@ pub fn segments(
     })
 }
 
+/// For each segment of `segs` (ends below `n`, in either order), whether it is the first with
+/// its pair of ends: the segments grouped by smaller end (a counting sort), each group sorted
+/// by larger end then index.
+fn first_of_each(segs: &[[u32; 2]], n: usize) -> Vec<bool> {
+    let mut start = vec![0usize; n + 1];
+    for s in segs {
+        start[s[0].min(s[1]) as usize + 1] += 1;
+    }
+    for i in 1..start.len() {
+        start[i] += start[i - 1];
+    }
+    let mut by_end = vec![(0u32, 0u32); segs.len()];
+    let mut next = start.clone();
+    for (k, s) in segs.iter().enumerate() {
+        let low = s[0].min(s[1]) as usize;
+        by_end[next[low]] = (s[0].max(s[1]), k as u32);
+        next[low] += 1;
+    }
+    let mut first = vec![false; segs.len()];
+    for i in 0..n {
+        let group = &mut by_end[start[i]..start[i + 1]];
+        group.sort_unstable();
+        for same in group.chunk_by(|x, y| x.0 == y.0) {
+            first[same[0].1 as usize] = true;
+        }
+    }
+    first
+}
+
 /// A message for every point from `from` on (the rounded intersection points) that has the
 /// coordinates of another point of `cloud`.
 fn coincident_points(cloud: &Cloud, from: usize) -> Vec<String> {
@@ -190,7 +216,9 @@ fn coincident_points(cloud: &Cloud, from: usize) -> Vec<String> {
     found
 }
 
-/// A message for every point on the open segment of a segment.
+/// A message for every point on the open segment of a segment: collinear with its ends, in
+/// their bounding box, and at neither (the candidates are those of the grid buckets of the
+/// box).
 fn points_on_segments(
     segs: &[[u32; 2]],
     origin: &[u32],
@@ -200,42 +228,78 @@ fn points_on_segments(
     let mut found = Vec::new();
     for (k, s) in segs.iter().enumerate() {
         let (a, b) = (&points[s[0] as usize], &points[s[1] as usize]);
-        for q in cloud.in_small_disk(s[0], s[1]) {
+        let lo = [a[0].min(b[0]), a[1].min(b[1])];
+        let hi = [a[0].max(b[0]), a[1].max(b[1])];
+        cloud.candidates(lo, hi, |q| {
             let p = &points[q as usize];
             if p != a
                 && p != b
+                && (0..2).all(|j| lo[j] <= p[j] && p[j] <= hi[j])
                 && orient2d(a, b, p) == Sign::Zero
-                && dot_sign(a, b, p) == Sign::Negative
             {
                 found.push(format!("point {q} lies on segment {}", origin[k]));
             }
-        }
+        });
     }
     found
 }
 
 /// The pairs of segments (indices into `segs`, sorted) that cross properly (the pairs that
-/// touch share an end or were reported as a point on a segment). Candidate pairs share a grid
-/// bucket of their bounding boxes.
+/// touch share an end or were reported as a point on a segment). Candidate pairs have
+/// overlapping bounding boxes and are listed in the grid buckets those boxes meet; each pair is
+/// tested once, in the first bucket (lowest row, then column) the two boxes share.
 fn crossing_pairs(segs: &[[u32; 2]], points: &[[f64; 2]], cloud: &Cloud) -> Vec<(u32, u32)> {
     let p = |i: u32| &points[i as usize];
-    let mut buckets: std::collections::HashMap<(usize, usize), Vec<u32>> = Default::default();
-    for (k, s) in segs.iter().enumerate() {
-        let (a, b) = (p(s[0]), p(s[1]));
-        let lo = [a[0].min(b[0]), a[1].min(b[1])];
-        let hi = [a[0].max(b[0]), a[1].max(b[1])];
-        cloud.cells_of_box(lo, hi, |cell| {
-            buckets.entry(cell).or_default().push(k as u32)
+    let boxes: Vec<[[f64; 2]; 2]> = segs
+        .iter()
+        .map(|s| {
+            let (a, b) = (p(s[0]), p(s[1]));
+            [
+                [a[0].min(b[0]), a[1].min(b[1])],
+                [a[0].max(b[0]), a[1].max(b[1])],
+            ]
+        })
+        .collect();
+    let cells: Vec<[usize; 4]> = boxes
+        .iter()
+        .map(|b| cloud.cells_of_box(b[0], b[1]))
+        .collect();
+    let columns = cloud.columns();
+    let each_cell = |c: &[usize; 4], f: &mut dyn FnMut(usize)| {
+        for y in c[1]..=c[3] {
+            for x in c[0]..=c[2] {
+                f(y * columns + x);
+            }
+        }
+    };
+    // The segments of each bucket, in increasing order, in one array.
+    let mut start = vec![0usize; cloud.cell_count() + 1];
+    for c in &cells {
+        each_cell(c, &mut |id| start[id + 1] += 1);
+    }
+    for id in 1..start.len() {
+        start[id] += start[id - 1];
+    }
+    let mut listed = vec![0u32; start[start.len() - 1]];
+    let mut next = start.clone();
+    for (k, c) in cells.iter().enumerate() {
+        each_cell(c, &mut |id| {
+            listed[next[id]] = k as u32;
+            next[id] += 1;
         });
     }
-    let mut tested = HashSet::new();
     let mut found = Vec::new();
-    let mut cells: Vec<_> = buckets.into_iter().collect();
-    cells.sort_unstable();
-    for (_, list) in cells {
-        for (x, &s) in list.iter().enumerate() {
-            for &t in &list[x + 1..] {
-                if !tested.insert((s, t)) {
+    for id in 0..start.len() - 1 {
+        let list = &listed[start[id]..start[id + 1]];
+        let (x, y) = (id % columns, id / columns);
+        for (i, &s) in list.iter().enumerate() {
+            for &t in &list[i + 1..] {
+                let (cs, ct) = (&cells[s as usize], &cells[t as usize]);
+                let (bs, bt) = (&boxes[s as usize], &boxes[t as usize]);
+                if x != cs[0].max(ct[0])
+                    || y != cs[1].max(ct[1])
+                    || (0..2).any(|k| bs[1][k] < bt[0][k] || bt[1][k] < bs[0][k])
+                {
                     continue;
                 }
                 let ([a, b], [c, d]) = (segs[s as usize], segs[t as usize]);
@@ -245,7 +309,7 @@ fn crossing_pairs(segs: &[[u32; 2]], points: &[[f64; 2]], cloud: &Cloud) -> Vec<
                 let o1 = orient2d(p(a), p(b), p(c)) * orient2d(p(a), p(b), p(d));
                 let o2 = orient2d(p(c), p(d), p(a)) * orient2d(p(c), p(d), p(b));
                 if o1 == Sign::Negative && o2 == Sign::Negative {
-                    found.push((s.min(t), s.max(t)));
+                    found.push((s, t));
                 }
             }
         }

@@ -116,7 +116,7 @@ pub fn conforming_2d_with(
     let points = input::points(xy)?;
     let c = conform(points, segments, options)?;
     let dt = Delaunay2d::new(&c.all)?;
-    let edges = ordered_sub_edges(&c.sub, &c.segs, &c.origin, &c.all, dt.duplicate_of());
+    let edges = ordered_sub_edges(&c.sub, &c.segs, &c.all, dt.duplicate_of());
     let mesh = mesh_of(&c.all, &dt, c.dims, edges);
     validate_mesh(&mesh).map_err(|m| Error::internal(format!("conforming 2D result: {m}")))?;
     Ok(Conforming2d {
@@ -134,9 +134,8 @@ struct Conformed {
     intersections: usize,
     /// Input points then added points.
     all: Vec<[f64; 2]>,
-    /// Kept segments (duplicates merged) and the input segment each comes from.
+    /// Kept segments (duplicates merged), by input segment and along it.
     segs: Vec<[u32; 2]>,
-    origin: Vec<u32>,
     dims: Vec<i8>,
     sub: Subdivision,
 }
@@ -150,8 +149,8 @@ fn conform(
     let mut cloud = cloud_of(&points, &first, segments.len() / 2);
     let input::Segments {
         segs,
-        origin,
         intersections,
+        ..
     } = input::segments(segments, &points, &first, &mut cloud, options.crossings)?;
     let limit = ADDED_POINTS_PER_ITEM.saturating_mul(points.len() + segs.len());
     let mut sub = Subdivision::new(cloud, &segs, limit, options.algorithm);
@@ -168,7 +167,6 @@ fn conform(
         intersections,
         all,
         segs,
-        origin,
         dims,
         sub,
     })
@@ -207,8 +205,8 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
     let mut checked = cloud_of(&points, &first, segments.len() / 2);
     let input::Segments {
         segs,
-        origin,
         intersections,
+        ..
     } = input::segments(segments, &points, &first, &mut checked, options.crossings)?;
     // The intersection points of split segments count as input points from here on.
     points.extend_from_slice(&checked.points[n_caller..]);
@@ -221,10 +219,17 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         on_any[s[0] as usize] = true;
         on_any[s[1] as usize] = true;
     }
-    let mut cloud = grid_of(&points, segs.len(), |i| on_any[i]);
+    // The grid of the checks indexes the points that are their own first copy; when those
+    // are all on segments, it is the grid this phase needs.
+    let mut cloud = if (0..n_input).all(|i| on_any[i] || first[i] as usize != i) {
+        checked
+    } else {
+        grid_of(&points, segs.len(), |i| on_any[i])
+    };
     let limit = ADDED_POINTS_PER_ITEM.saturating_mul(n_input + segs.len());
-    let (subs, added_on) = refine::split_segments(&mut cloud, &segs, limit)?;
-    let all = cloud.points;
+    let acute = refine::acute_apices(&points, &segs);
+    let (subs, added_on) = refine::split_segments(&mut cloud, &segs, &acute, limit)?;
+    let all = cloud.into_points();
     let n_all = all.len();
     let dt = Delaunay2d::of_subset(&all, |i| i as usize >= n_input || on_any[i as usize]).map_err(
         |e| {
@@ -235,6 +240,7 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         },
     )?;
     let compact = dt.compact();
+    drop(dt);
     let mut duplicate_of = first.clone();
     duplicate_of.extend((n_input as u32)..(n_all as u32));
     let mut on_segment = vec![u32::MAX; n_input];
@@ -246,20 +252,20 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         dims[s[1] as usize] = DIMENSION_CORNER;
     }
     dims[n_input..].fill(DIMENSION_SEGMENT);
-    let mut r = Refiner::new(all.clone(), compact, segs, on_segment, &sub_edges)?;
+    let corners = enclosing_box(&all);
+    let mut r = Refiner::new(all, compact, segs, acute, on_segment, &sub_edges)?;
     // Four far corners enclose everything, so that no point added on a segment is ever on the
     // convex hull (rounding would make the hull concave there).
-    for corner in enclosing_box(&all) {
+    for corner in corners {
         r.insert_outside(corner)?;
     }
     // The other input points: those outside the domain are left out (in no triangle, they
     // constrain nothing).
     r.assign_regions(options);
-    for i in 0..n_input {
-        if !on_any[i] && first[i] as usize == i {
-            r.insert_if_inside(i as u32)?;
-        }
-    }
+    let free: Vec<u32> = (0..n_input as u32)
+        .filter(|&i| !on_any[i as usize] && first[i as usize] == i)
+        .collect();
+    r.insert_if_inside(&free)?;
     r.run(options)?;
     // In the output numbering the box corners (n_all..n_all + 4) are left out.
     let renumber = |v: u32| if v as usize >= n_all { v - 4 } else { v };
@@ -287,7 +293,7 @@ pub fn quality_2d(xy: &[f64], segments: &[u32], options: &QualityOptions) -> Res
         .into_iter()
         .map(|(a, b, s)| (renumber(a), renumber(b), s))
         .collect();
-    let edges = ordered_segments(&subs, &r.segments, &origin, &points);
+    let edges = ordered_segments(&subs, &r.segments, &points);
     let mut full_duplicate_of = duplicate_of;
     full_duplicate_of.extend((n_all as u32)..(points.len() as u32));
     let mesh = Mesh {
@@ -343,30 +349,32 @@ fn hull_segments(points: &[[f64; 2]]) -> Result<Vec<u32>> {
 
 /// Sub-segments `(a, b, segment)` ordered by input segment and along it from its first end,
 /// oriented that way (the segments `segs` of one input segment are consecutive, in order
-/// along it).
-fn ordered_segments(
-    subs: &[(u32, u32, u32)],
-    segs: &[[u32; 2]],
-    origin: &[u32],
-    points: &[[f64; 2]],
-) -> Vec<u32> {
-    let mut keyed: Vec<(u32, u32, f64, u32, u32)> = subs
-        .iter()
-        .map(|&(a, b, s)| {
-            let [p, q] = segs[s as usize].map(|i| points[i as usize]);
-            let along = |i: u32| {
-                let x = points[i as usize];
-                (x[0] - p[0]) * (q[0] - p[0]) + (x[1] - p[1]) * (q[1] - p[1])
-            };
-            let (a, b) = if along(a) <= along(b) { (a, b) } else { (b, a) };
-            (origin[s as usize], s, along(a), a, b)
-        })
-        .collect();
-    keyed.sort_by(|x, y| (x.0, x.1).cmp(&(y.0, y.1)).then(x.2.total_cmp(&y.2)));
-    keyed
-        .into_iter()
-        .flat_map(|(_, _, _, a, b)| [a, b])
-        .collect()
+/// along it, so that the order of the input segments is that of `segs`: the sub-segments are
+/// grouped by segment with a counting sort, then sorted along it within a group).
+fn ordered_segments(subs: &[(u32, u32, u32)], segs: &[[u32; 2]], points: &[[f64; 2]]) -> Vec<u32> {
+    let mut start = vec![0usize; segs.len() + 1];
+    for &(_, _, s) in subs {
+        start[s as usize + 1] += 1;
+    }
+    for k in 1..start.len() {
+        start[k] += start[k - 1];
+    }
+    let mut keyed = vec![(0.0, 0u32, 0u32); subs.len()];
+    let mut next = start.clone();
+    for &(a, b, s) in subs {
+        let [p, q] = segs[s as usize].map(|i| points[i as usize]);
+        let along = |i: u32| {
+            let x = points[i as usize];
+            (x[0] - p[0]) * (q[0] - p[0]) + (x[1] - p[1]) * (q[1] - p[1])
+        };
+        let (a, b) = if along(a) <= along(b) { (a, b) } else { (b, a) };
+        keyed[next[s as usize]] = (along(a), a, b);
+        next[s as usize] += 1;
+    }
+    for k in 0..segs.len() {
+        keyed[start[k]..start[k + 1]].sort_by(|x, y| x.0.total_cmp(&y.0));
+    }
+    keyed.into_iter().flat_map(|(_, a, b)| [a, b]).collect()
 }
 
 /// The grid of the input points, copies of an earlier point left out of the buckets.
@@ -402,12 +410,11 @@ fn grid_of(points: &[[f64; 2]], n_segments: usize, indexed: impl Fn(usize) -> bo
 fn ordered_sub_edges(
     sub: &Subdivision,
     segs: &[[u32; 2]],
-    origin: &[u32],
     points: &[[f64; 2]],
     duplicate_of: &[u32],
 ) -> Vec<u32> {
     let subs: Vec<(u32, u32, u32)> = sub.sub_edges().collect();
-    let mut edges = ordered_segments(&subs, segs, origin, points);
+    let mut edges = ordered_segments(&subs, segs, points);
     for v in &mut edges {
         *v = duplicate_of[*v as usize];
     }

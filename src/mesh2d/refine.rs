@@ -35,7 +35,14 @@
 //!      the bound) when the angle is bad and that is nearer than the circumcenter, else at its
 //!      circumcenter. A point that would encroach sub-segments, or that lies beyond one in
 //!      its diametral disk, is not inserted: they are split instead, and the triangle is
-//!      reconsidered;
+//!      reconsidered. Bad triangles are taken smallest first, by buckets of their shortest
+//!      edge (a factor `sqrt(2)` of squared length per bucket), first in, first out within a
+//!      bucket: the order of Shewchuk's Triangle. Small features are resolved first and the
+//!      mesh grows away from them; taking the worst angle first instead sends off-centers
+//!      from every short boundary edge of a finely sampled curve, rows of points parallel to
+//!      it at its own spacing that the mesh cannot grade away from (on a 10^4-edge star
+//!      polygon at 25 degrees: 29% more triangles than CGAL's circumcenters, against 9% more
+//!      in this order);
 //!    - a triangle bad by angle only whose shortest edge joins two points on segments meeting
 //!      at an end at an angle below 60 degrees, at equal distances from it (within
 //!      [`SHELL_TOLERANCE`]), is skinny because of a small input angle: splitting it would not
@@ -51,11 +58,11 @@
 //! Delaunay-admissible) — the result is still conforming, and every triangle of the domain has
 //! an empty circumcircle.
 
-use std::collections::{BinaryHeap, HashMap, VecDeque};
+use std::collections::{BinaryHeap, VecDeque};
 
 use super::classify::classify_with;
 use super::cloud::Cloud;
-use super::delaunay::{conflict, INFINITE};
+use super::delaunay::{conflict, hilbert_order, INFINITE};
 use super::exact::dot_sign;
 use super::input::Crossings;
 use crate::error::{Error, ErrorKind, Result};
@@ -183,22 +190,22 @@ enum Walk {
     Lost,
 }
 
-/// A bad triangle in the queue: worst (smallest angle) first, then by id.
-#[derive(PartialEq)]
+/// A bad triangle in the queue, taken smallest first: by the [`length_bucket`] of its shortest
+/// edge, then first in, first out (`seq`, the order of queueing).
+#[derive(PartialEq, Eq)]
 struct Bad {
-    angle: f64,
+    bucket: i32,
+    seq: u64,
     t: u32,
     v: [u32; 3],
 }
 
-impl Eq for Bad {}
-
 impl Ord for Bad {
     fn cmp(&self, other: &Self) -> std::cmp::Ordering {
         other
-            .angle
-            .total_cmp(&self.angle)
-            .then(other.t.cmp(&self.t))
+            .bucket
+            .cmp(&self.bucket)
+            .then(other.seq.cmp(&self.seq))
     }
 }
 
@@ -213,13 +220,12 @@ pub struct Refiner {
     pub points: Vec<[f64; 2]>,
     /// Input segment (index into `segments`) each point lies inside of; NONE for others.
     pub on_segment: Vec<u32>,
-    /// Input segments at each input point (empty for others).
-    incident: Vec<Vec<u32>>,
+    /// Input segments at each input point (none for others).
+    incident: Incidence,
     /// Whether each input point is the apex of an acute angle between two segments.
     acute: Vec<bool>,
     /// The input segments (point pairs).
     pub segments: Vec<[u32; 2]>,
-    corner_pairs: HashMap<(u32, u32), u32>,
     tri: Vec<[u32; 3]>,
     adj: Vec<[u32; 3]>,
     /// Bit `k`: the edge opposite slot `k` is a sub-segment.
@@ -239,6 +245,8 @@ pub struct Refiner {
     off_centers: bool,
     encroached: VecDeque<(u32, u32)>,
     bad: BinaryHeap<Bad>,
+    /// Bad triangles queued so far.
+    queued: u64,
     rng: u32,
     pub report: RefinementReport,
 }
@@ -247,31 +255,24 @@ impl Refiner {
     /// The triangulation `tri`/`adj` (live triangles of a [`super::delaunay::Delaunay2d`],
     /// compacted) of `points`, whose sub-segments `sub_edges` (point pairs with their input
     /// segment) are edges of it. `on_segment` gives the input segment of points added on
-    /// segments; `segments` are the input segments.
+    /// segments; `segments` are the input segments, `acute` their [`acute_apices`].
     pub fn new(
         points: Vec<[f64; 2]>,
         (tri, adj): (Vec<[u32; 3]>, Vec<[u32; 3]>),
         segments: Vec<[u32; 2]>,
+        acute: Vec<bool>,
         on_segment: Vec<u32>,
         sub_edges: &[[u32; 2]],
     ) -> Result<Self> {
         let n = points.len();
-        let mut incident = vec![Vec::new(); n];
-        let mut corner_pairs = HashMap::new();
-        for (k, s) in segments.iter().enumerate() {
-            incident[s[0] as usize].push(k as u32);
-            incident[s[1] as usize].push(k as u32);
-            corner_pairs.insert((s[0].min(s[1]), s[0].max(s[1])), k as u32);
-        }
+        let incident = Incidence::new(n, &segments);
         let count = tri.len();
-        let acute = acute_apices(&points, &segments);
         let mut r = Refiner {
             points,
             on_segment,
             incident,
             acute,
             segments,
-            corner_pairs,
             tri,
             adj,
             seg: vec![0; count],
@@ -287,6 +288,7 @@ impl Refiner {
             off_centers: true,
             encroached: VecDeque::new(),
             bad: BinaryHeap::new(),
+            queued: 0,
             rng: 0x2545_f491,
             report: RefinementReport::default(),
         };
@@ -376,34 +378,37 @@ impl Refiner {
         Ok(())
     }
 
-    /// Inserts the point `i` of the point list (not yet a vertex, inside the convex hull of
-    /// the vertices) without crossing a sub-segment, if it lies in the domain; returns whether
-    /// it does.
-    pub fn insert_if_inside(&mut self, i: u32) -> Result<bool> {
-        let p = self.points[i as usize];
-        let start = (0..self.tri.len() as u32)
-            .find(|&t| self.alive[t as usize] && !self.tri[t as usize].contains(&INFINITE));
-        let walk = start.map(|t| self.walk(t, &p, false));
-        if let Some(Walk::Inside(t)) = walk {
-            if self.region[t as usize] == 0 {
-                return Ok(false);
+    /// Inserts the points `points` of the point list (not yet vertices, inside the convex hull
+    /// of the vertices) that lie in the domain, without crossing a sub-segment, along a Hilbert
+    /// curve: each is located by a walk from the triangle of the one before.
+    pub fn insert_if_inside(&mut self, points: &[u32]) -> Result<()> {
+        let coords: Vec<[f64; 2]> = points.iter().map(|&i| self.points[i as usize]).collect();
+        let mut start = self.any_finite();
+        for k in hilbert_order(&coords) {
+            let (i, p) = (points[k as usize], coords[k as usize]);
+            let walk = start.map(|t| self.walk(t, &p, false));
+            if let Some(Walk::Inside(t)) = walk {
+                start = Some(t);
+                if self.region[t as usize] == 0 {
+                    continue;
+                }
             }
+            let cavity = match walk {
+                Some(Walk::Inside(t))
+                    if !self.tri[t as usize]
+                        .iter()
+                        .any(|&v| self.points[v as usize] == p) =>
+                {
+                    self.cavity(&[t], &p)
+                }
+                _ => None,
+            };
+            let Some((cavity, boundary)) = cavity else {
+                return Err(Error::internal(format!("point {i} could not be inserted")));
+            };
+            start = self.fill(i, &cavity, &boundary).first().copied();
         }
-        let cavity = match walk {
-            Some(Walk::Inside(t))
-                if !self.tri[t as usize]
-                    .iter()
-                    .any(|&v| self.points[v as usize] == p) =>
-            {
-                self.cavity(&[t], &p)
-            }
-            _ => None,
-        };
-        let Some((cavity, boundary)) = cavity else {
-            return Err(Error::internal(format!("point {i} could not be inserted")));
-        };
-        self.fill(i, &cavity, &boundary);
-        Ok(true)
+        Ok(())
     }
 
     /// Assigns regions: 0 to the outside (reached from an infinite triangle without crossing
@@ -429,18 +434,21 @@ impl Refiner {
                 }
             }
         }
-        for h in &options.holes {
-            if let Some(t) = self.locate_anywhere(*h) {
-                self.flood(t, 0);
-            }
+        let seeds: Vec<[f64; 2]> = (options.holes.iter().copied())
+            .chain(options.regions.iter().map(|r| r.seed))
+            .collect();
+        let found = self.locate_all(&seeds);
+        let (holes, regions) = found.split_at(options.holes.len());
+        for &t in holes.iter().flatten() {
+            self.flood(t, 0);
         }
-        for r in &options.regions {
+        for (r, &t) in options.regions.iter().zip(regions) {
             let area = if r.max_area > 0.0 {
                 r.max_area
             } else {
                 options.max_area
             };
-            if let Some(t) = self.locate_anywhere(r.seed) {
+            if let Some(t) = t {
                 if self.region[t as usize] != 0 {
                     self.region_table.push((r.label, area));
                     let id = (self.region_table.len() - 1) as u32;
@@ -467,14 +475,27 @@ impl Refiner {
         }
     }
 
-    /// A finite triangle containing `p` (closed), by a walk that ignores sub-segments.
-    fn locate_anywhere(&mut self, p: [f64; 2]) -> Option<u32> {
-        let start = (0..self.tri.len() as u32)
-            .find(|&t| self.alive[t as usize] && !self.tri[t as usize].contains(&INFINITE))?;
-        match self.walk(start, &p, false) {
-            Walk::Inside(t) => Some(t),
-            _ => None,
+    /// A live finite triangle.
+    fn any_finite(&self) -> Option<u32> {
+        (0..self.tri.len() as u32)
+            .find(|&t| self.alive[t as usize] && !self.tri[t as usize].contains(&INFINITE))
+    }
+
+    /// A finite triangle containing each point of `seeds` (closed), or `None` outside the
+    /// triangulation: walks that ignore sub-segments, the seeds taken along a Hilbert curve,
+    /// each walk from the triangle of the seed before.
+    fn locate_all(&mut self, seeds: &[[f64; 2]]) -> Vec<Option<u32>> {
+        let mut found = vec![None; seeds.len()];
+        let Some(mut start) = self.any_finite() else {
+            return found;
+        };
+        for i in hilbert_order(seeds) {
+            if let Walk::Inside(t) = self.walk(start, &seeds[i as usize], false) {
+                found[i as usize] = Some(t);
+                start = t;
+            }
         }
+        found
     }
 
     /// A visibility walk from the finite triangle `start` towards `p`. With `blocked`, the
@@ -644,14 +665,14 @@ impl Refiner {
     fn push_point(&mut self, p: [f64; 2], on: u32) -> u32 {
         self.points.push(p);
         self.on_segment.push(on);
-        self.incident.push(Vec::new());
         self.vtri.push(NONE);
         (self.points.len() - 1) as u32
     }
 
     /// Replaces the cavity by the fan from point `i`; returns the new triangles.
     fn fill(&mut self, i: u32, cavity: &[u32], boundary: &[(u32, usize)]) -> Vec<u32> {
-        let mut starts = HashMap::with_capacity(boundary.len());
+        // The new triangle from each boundary vertex, sorted by that vertex.
+        let mut starts = Vec::with_capacity(boundary.len());
         let mut created = Vec::with_capacity(boundary.len());
         for &(t, k) in boundary {
             let v = self.tri[t as usize];
@@ -668,12 +689,13 @@ impl Refiner {
                 .position(|&x| x == t)
                 .unwrap_or(0);
             self.adj[n as usize][back] = new;
-            starts.insert(a, new);
+            starts.push((a, new));
             created.push(new);
         }
+        starts.sort_unstable();
         for &new in &created {
             let b = self.tri[new as usize][1];
-            let next = starts[&b];
+            let next = starts[starts.partition_point(|&(a, _)| a < b)].1;
             self.adj[new as usize][0] = next;
             self.adj[next as usize][1] = new;
         }
@@ -699,9 +721,12 @@ impl Refiner {
                 return s;
             }
         }
-        self.corner_pairs
-            .get(&(a.min(b), a.max(b)))
+        // Both ends are input points: the segment between them.
+        self.incident
+            .of(a)
+            .iter()
             .copied()
+            .find(|&k| self.segments[k as usize].contains(&b))
             .unwrap_or(NONE)
     }
 
@@ -778,7 +803,8 @@ impl Refiner {
         Ok(())
     }
 
-    /// The smallest angle of triangle `t` (degrees), its area, and whether it is bad.
+    /// The squared length of the shortest edge of triangle `t`, its area, and whether it is
+    /// bad.
     fn quality(&self, t: u32) -> (f64, f64, bool) {
         let v = self.tri[t as usize];
         let [a, b, c] = v.map(|x| *self.p(x));
@@ -793,22 +819,23 @@ impl Refiner {
         } else {
             (ca, ab, bc)
         };
-        let cos = ((x + y - short) / (2.0 * (x * y).sqrt())).clamp(-1.0, 1.0);
-        let angle = cos.acos().to_degrees();
+        let cos = (x + y - short) / (2.0 * (x * y).sqrt());
         let max_area = self.region_table[self.region[t as usize] as usize].1;
         let bad =
             (self.min_angle > 0.0 && cos > self.cos_bound) || (max_area > 0.0 && area > max_area);
-        (angle, area, bad)
+        (short, area, bad)
     }
 
     fn push_if_bad(&mut self, t: u32) {
         if self.region[t as usize] == 0 {
             return;
         }
-        let (angle, _, bad) = self.quality(t);
+        let (short, _, bad) = self.quality(t);
         if bad {
+            self.queued += 1;
             self.bad.push(Bad {
-                angle,
+                bucket: length_bucket(short),
+                seq: self.queued,
                 t,
                 v: self.tri[t as usize],
             });
@@ -816,12 +843,12 @@ impl Refiner {
     }
 
     /// The input segments point `v` lies on (inside or at an end).
-    fn segments_at(&self, v: u32) -> Vec<u32> {
-        let s = self.on_segment[v as usize];
-        if s != NONE {
-            vec![s]
+    fn segments_at(&self, v: u32) -> &[u32] {
+        let s = &self.on_segment[v as usize];
+        if *s != NONE {
+            std::slice::from_ref(s)
         } else {
-            self.incident[v as usize].clone()
+            self.incident.of(v)
         }
     }
 
@@ -830,8 +857,8 @@ impl Refiner {
     /// a small input angle).
     fn on_common_shell(&self, p: u32, q: u32) -> bool {
         let (sp, sq) = (self.segments_at(p), self.segments_at(q));
-        for &s in &sp {
-            for &r in &sq {
+        for &s in sp {
+            for &r in sq {
                 if s == r {
                     continue;
                 }
@@ -1052,24 +1079,74 @@ impl Refiner {
     }
 }
 
+/// The queue bucket of a squared length: `floor(2 log2(square))`, from the bits of the number
+/// (exact, the same on every platform): squared lengths within a factor `sqrt(2)` of each
+/// other share a bucket (Triangle's bucketing).
+fn length_bucket(square: f64) -> i32 {
+    let bits = square.to_bits();
+    let exponent = ((bits >> 52) & 0x7ff) as i32;
+    if exponent == 0 {
+        // Zero or subnormal: below every normal square.
+        return -2 * 1023;
+    }
+    let mantissa = f64::from_bits((bits & ((1 << 52) - 1)) | (1023 << 52));
+    2 * (exponent - 1023) + i32::from(mantissa >= std::f64::consts::SQRT_2)
+}
+
 /// For each point of `points`, whether two of the `segments` at it form an acute angle.
 pub fn acute_apices(points: &[[f64; 2]], segments: &[[u32; 2]]) -> Vec<bool> {
-    let mut far: Vec<Vec<u32>> = vec![Vec::new(); points.len()];
-    for s in segments {
-        far[s[0] as usize].push(s[1]);
-        far[s[1] as usize].push(s[0]);
-    }
-    (0..points.len())
+    let incident = Incidence::new(points.len(), segments);
+    (0..points.len() as u32)
         .map(|z| {
-            let list = &far[z];
+            let far = |k: u32| {
+                let s = segments[k as usize];
+                &points[(if s[0] == z { s[1] } else { s[0] }) as usize]
+            };
+            let list = incident.of(z);
             (0..list.len()).any(|i| {
-                list[i + 1..].iter().any(|&j| {
-                    let (a, b) = (&points[list[i] as usize], &points[j as usize]);
-                    dot_sign(a, b, &points[z]) == Sign::Positive
-                })
+                list[i + 1..]
+                    .iter()
+                    .any(|&j| dot_sign(far(list[i]), far(j), &points[z as usize]) == Sign::Positive)
             })
         })
         .collect()
+}
+
+/// The segments at each point, in increasing order, in one array.
+struct Incidence {
+    start: Vec<u32>,
+    list: Vec<u32>,
+}
+
+impl Incidence {
+    /// For the points `0..n` and the segments `segments` (ends below `n`).
+    fn new(n: usize, segments: &[[u32; 2]]) -> Self {
+        let mut start = vec![0u32; n + 1];
+        for s in segments {
+            start[s[0] as usize + 1] += 1;
+            start[s[1] as usize + 1] += 1;
+        }
+        for i in 1..start.len() {
+            start[i] += start[i - 1];
+        }
+        let mut list = vec![0u32; 2 * segments.len()];
+        let mut next = start.clone();
+        for (k, s) in segments.iter().enumerate() {
+            for v in s {
+                list[next[*v as usize] as usize] = k as u32;
+                next[*v as usize] += 1;
+            }
+        }
+        Incidence { start, list }
+    }
+
+    /// The segments at point `v` (none past the points of [`Incidence::new`]).
+    fn of(&self, v: u32) -> &[u32] {
+        match (self.start.get(v as usize), self.start.get(v as usize + 1)) {
+            (Some(&a), Some(&b)) => &self.list[a as usize..b as usize],
+            _ => &[],
+        }
+    }
 }
 
 /// Where to split the sub-segment `[a b]`: at the power of two nearest to half its length
@@ -1105,13 +1182,13 @@ fn admissible(cloud: &Cloud, a: u32, b: u32) -> bool {
 /// Ruppert's split points rather than Pébay's projections, which leave short sub-segments
 /// near acute angles that refinement would then propagate); the sub-segments are then edges of
 /// every Delaunay triangulation of those points. Returns the sub-segments with their input
-/// segment and the input segment of each added point.
+/// segment and the input segment of each added point. `acute` is [`acute_apices`].
 pub fn split_segments(
     cloud: &mut Cloud,
     segments: &[[u32; 2]],
+    acute: &[bool],
     limit: usize,
 ) -> Result<(Vec<[u32; 3]>, Vec<u32>)> {
-    let acute = acute_apices(&cloud.points, segments);
     let apex = |v: u32| acute.get(v as usize).copied().unwrap_or(false);
     let mut stack: Vec<[u32; 3]> = segments
         .iter()
@@ -1119,23 +1196,25 @@ pub fn split_segments(
         .rev()
         .map(|(k, s)| [s[0], s[1], k as u32])
         .collect();
-    let mut done: Vec<[u32; 3]> = Vec::new();
+    // Accepted sub-segments, with the number of points they were accepted against.
+    let mut done: Vec<([u32; 3], usize)> = Vec::new();
     let mut on_segment = Vec::new();
     loop {
         let Some([a, b, s]) = stack.pop() else {
             // Points added later may have entered the disks of earlier sub-segments.
-            let (clean, dirty): (Vec<[u32; 3]>, Vec<[u32; 3]>) = done
+            let now = cloud.points.len();
+            let (clean, dirty): (Vec<_>, Vec<_>) = done
                 .into_iter()
-                .partition(|e| admissible(cloud, e[0], e[1]));
-            done = clean;
+                .partition(|&(e, seen)| seen == now || admissible(cloud, e[0], e[1]));
+            done = clean.into_iter().map(|(e, _)| (e, now)).collect();
             if dirty.is_empty() {
                 break;
             }
-            stack = dirty.into_iter().rev().collect();
+            stack = dirty.into_iter().rev().map(|(e, _)| e).collect();
             continue;
         };
         if admissible(cloud, a, b) {
-            done.push([a, b, s]);
+            done.push(([a, b, s], cloud.points.len()));
             continue;
         }
         if on_segment.len() >= limit {
@@ -1156,5 +1235,5 @@ pub fn split_segments(
         stack.push([i, b, s]);
         stack.push([a, i, s]);
     }
-    Ok((done, on_segment))
+    Ok((done.into_iter().map(|(e, _)| e).collect(), on_segment))
 }
