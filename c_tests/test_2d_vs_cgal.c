@@ -376,15 +376,19 @@ static int check_union(const DelmeshMesh *mesh, const Case *c, char *why, size_t
 
 static size_t total_ours, total_cgal;
 
-static void run_case(const Case *c) {
+/* The conforming triangulation of c (crossing segments split when `split`), checked as every
+ * conforming result is: valid Delaunay, every sub-edge strongly Delaunay-admissible, every
+ * segment the union of its sub-edges. NULL when the call fails (reported). */
+static DelmeshMesh *conforming_checked(const Case *c, int split) {
   DelmeshOptions2d options;
   memset(&options, 0, sizeof options);
   options.mode = DELMESH_MODE2D_CONFORMING;
+  options.split_crossing_segments = split;
   DelmeshMesh *mesh = NULL;
   DelmeshStatus s = delmesh_triangulate_2d(c->xy, c->n, c->seg, c->m, &options, &mesh);
-  if (!check_case(s == DELMESH_OK, "%s: delmesh_triangulate_2d (%s)", c->name,
+  if (!check_case(s == DELMESH_OK, "%s: delmesh_triangulate_2d%s (%s)", c->name, split ? ", crossings split" : "",
                   s == DELMESH_OK ? "ok" : delmesh_last_error_message()))
-    return;
+    return NULL;
   char why[256] = "";
   EdgeUse *table = NULL;
   size_t table_count = 0;
@@ -396,6 +400,13 @@ static void run_case(const Case *c) {
   }
   int chained = check_union(mesh, c, why, sizeof why);
   check_case(chained, "%s: every segment the union of its sub-edges%s%s", c->name, chained ? "" : ": ", why);
+  free(table);
+  return mesh;
+}
+
+static void run_case(const Case *c) {
+  DelmeshMesh *mesh = conforming_checked(c, 0);
+  if (!mesh) return;
   size_t ours = delmesh_mesh_vertex_count(mesh) - c->n;
   RefConforming2d cgal;
   if (ref_cgal_conforming_2d(c->xy, c->n, c->seg, c->m, &cgal, NULL) != 0) {
@@ -409,7 +420,6 @@ static void run_case(const Case *c) {
     total_ours += ours;
     total_cgal += theirs;
   }
-  free(table);
   delmesh_mesh_free(mesh);
 }
 
@@ -445,26 +455,8 @@ static void make_random_segments(Case *c, int k, uint64_t seed) {
  * (our vertices of dimension 0 past the input points) as many as CGAL's constrained
  * triangulation with Exact_predicates_tag inserts; inserted points printed beside CGAL's. */
 static void run_crossing_case(const Case *c) {
-  DelmeshOptions2d options;
-  memset(&options, 0, sizeof options);
-  options.mode = DELMESH_MODE2D_CONFORMING;
-  options.split_crossing_segments = 1;
-  DelmeshMesh *mesh = NULL;
-  DelmeshStatus s = delmesh_triangulate_2d(c->xy, c->n, c->seg, c->m, &options, &mesh);
-  if (!check_case(s == DELMESH_OK, "%s: split and triangulated (%s)", c->name,
-                  s == DELMESH_OK ? "ok" : delmesh_last_error_message()))
-    return;
-  char why[256] = "";
-  EdgeUse *table = NULL;
-  size_t table_count = 0;
-  int valid = check_triangulation(mesh, c->n, &table, &table_count, why, sizeof why);
-  check_case(valid, "%s: valid Delaunay triangulation%s%s", c->name, valid ? "" : ": ", why);
-  if (valid) {
-    int ok = check_admissible(mesh, c->n, table, table_count, why, sizeof why);
-    check_case(ok, "%s: every sub-edge strongly Delaunay-admissible%s%s", c->name, ok ? "" : ": ", why);
-  }
-  int chained = check_union(mesh, c, why, sizeof why);
-  check_case(chained, "%s: every segment the union of its sub-edges%s%s", c->name, chained ? "" : ": ", why);
+  DelmeshMesh *mesh = conforming_checked(c, 1);
+  if (!mesh) return;
   size_t nv = delmesh_mesh_vertex_count(mesh), crossings = 0;
   const int8_t *dims = delmesh_mesh_vertex_dimensions(mesh);
   while (c->n + crossings < nv && dims[c->n + crossings] == 0) crossings++;
@@ -480,7 +472,6 @@ static void run_crossing_case(const Case *c) {
     check_case(nv <= cgal.vertex_count, "%s: %zu inserted points, at most CGAL's %zu", c->name, nv - c->n,
                cgal.vertex_count - c->n);
   }
-  free(table);
   delmesh_mesh_free(mesh);
 }
 

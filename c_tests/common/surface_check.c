@@ -345,6 +345,16 @@ static int forced_by_surface(const SurfaceInput *in, const SurfaceResult *r, con
   return 1;
 }
 
+/* Whether a vertex lies closer to p than `length` (with the relative allowance): the
+ * circumsphere of a tetrahedron whose center is p holds a vertex near its center, which only a
+ * mesh kept from being Delaunay (by the surface) allows. */
+static int vertex_closer_than(const SurfaceResult *r, const double *p, double length) {
+  long double l2 = (long double)length * length * (1 + SURFACE_QUALITY_ROUNDING);
+  for (size_t v = 0; v < r->vertex_count; v++)
+    if (distance2(p, point(r->xyz, (uint32_t)v)) < l2) return 1;
+  return 0;
+}
+
 /* Per input vertex, its shortest surface edge (0 for a vertex no triangle uses). */
 static double *shortest_surface_edges(const SurfaceInput *in) {
   double *shortest = calloc(in->n ? in->n : 1, sizeof *shortest);
@@ -547,8 +557,19 @@ int surface_check(const SurfaceInput *in, const SurfaceResult *r, double radius_
         out->above_with_3_surface += on >= 3;
         out->above_with_4_surface += on == 4;
         double c[3];
-        if (on < 3 && circumcenter(point(r->xyz, q[0]), point(r->xyz, q[1]), point(r->xyz, q[2]), point(r->xyz, q[3]), c))
-          out->above_forced += forced_by_surface(in, r, shortest, r->labels[t], c);
+        if (on < 3 && circumcenter(point(r->xyz, q[0]), point(r->xyz, q[1]), point(r->xyz, q[2]), point(r->xyz, q[3]), c)) {
+          if (forced_by_surface(in, r, shortest, r->labels[t], c)) {
+            out->above_forced++;
+          } else {
+            double l = INFINITY;
+            for (int i = 0; i < 4; i++)
+              for (int j = i + 1; j < 4; j++) {
+                double d = sqrt((double)distance2(point(r->xyz, q[i]), point(r->xyz, q[j])));
+                if (d < l) l = d;
+              }
+            out->above_near_vertex += vertex_closer_than(r, c, l);
+          }
+        }
       }
     }
   }
@@ -569,7 +590,7 @@ int surface_report_ok(const SurfaceReport *r, int expected_regions, int quality,
          r->volume_error <= SURFACE_VOLUME_TOLERANCE && (expected_regions <= 0 || r->regions == expected_regions) &&
          r->seeds_wrong == 0 && r->holes_covered == 0 && (!volume_bounds || r->above_max_volume == 0) &&
          r->surface_steiner == 0 &&
-         (!quality || r->above_radius_edge == r->above_with_3_surface + r->above_forced);
+         (!quality || r->above_radius_edge == r->above_with_3_surface + r->above_forced + r->above_near_vertex);
 }
 
 void surface_report_describe(const SurfaceReport *r, int expected_regions, int quality, char *buffer, size_t size) {
@@ -593,9 +614,9 @@ void surface_report_describe(const SurfaceReport *r, int expected_regions, int q
   if (r->holes_covered) ADD("%zu hole seeds inside a tetrahedron; ", r->holes_covered);
   if (r->above_max_volume) ADD("%zu tetrahedra above their region's max volume; ", r->above_max_volume);
   if (r->surface_steiner) ADD("%zu Steiner points on the surface (first: vertex %ld); ", r->surface_steiner, r->first_surface_steiner);
-  if (quality && r->above_radius_edge != r->above_with_3_surface + r->above_forced)
+  if (quality && r->above_radius_edge != r->above_with_3_surface + r->above_forced + r->above_near_vertex)
     ADD("%zu tetrahedra above the radius-edge bound with < 3 surface vertices that the surface does not force; ",
-        r->above_radius_edge - r->above_with_3_surface - r->above_forced);
+        r->above_radius_edge - r->above_with_3_surface - r->above_forced - r->above_near_vertex);
   if (len == 0) ADD("ok: ");
   /* Figures. */
   ADD("%s, %zu Steiner, %d region%s, volume error %.1e (bound %.1e)", r->valid ? "valid" : "invalid", r->steiner,
@@ -603,8 +624,9 @@ void surface_report_describe(const SurfaceReport *r, int expected_regions, int q
   if (r->facets_checked) ADD(", facets = input");
   if (quality)
     ADD(", max radius-edge %.3f, %zu above the bound (%zu with >= 3, %zu with 4 surface vertices, %zu with < 3 forced "
-        "by the surface)",
-        r->max_radius_edge, r->above_radius_edge, r->above_with_3_surface, r->above_with_4_surface, r->above_forced);
+        "by the surface, %zu with a vertex nearer their circumcenter than their shortest edge)",
+        r->max_radius_edge, r->above_radius_edge, r->above_with_3_surface, r->above_with_4_surface, r->above_forced,
+        r->above_near_vertex);
 #undef ADD
 }
 

@@ -26,7 +26,10 @@
  *     upper bound of the local feature size TetGen -Y and delmesh use: the distance to the
  *     nearest vertex, edge or triangle of the vertex's link), or
  *   - beyond the surface: in no tetrahedron of the same label (exact location);
- *   distances with the same 1e-9 relative allowance.
+ *   or whose circumsphere holds a vertex nearer its center than the tetrahedron's shortest edge
+ *   (refinement declines a point that would make an edge shorter than the one it fixes; in a
+ *   Delaunay mesh the circumsphere is empty, so this happens only where the surface keeps the
+ *   mesh from being Delaunay; counted apart); distances with the same 1e-9 relative allowance.
  *
  * "Surface triangles" are the input triangles, or for a polygonal input the triangles that
  * cover its polygons (surface_check_polygons checks that cover). */
@@ -83,6 +86,8 @@ typedef struct SurfaceReport {
   size_t above_with_3_surface;  /* of which with >= 3 vertices on the surface */
   size_t above_with_4_surface;  /* of which with 4 */
   size_t above_forced;          /* of those with < 3, the ones the surface forces (see above) */
+  size_t above_near_vertex;     /* of the others, those with a vertex nearer their circumcenter
+                                 * than their shortest edge (see above) */
 } SurfaceReport;
 
 /* Every figure of `r` against `in`; `radius_edge_bound` 0 skips the quality figures. Returns 0

@@ -264,14 +264,7 @@ pub fn in_circumcircle(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], q: &[f64; 2]) -
 mod tests {
     use super::*;
 
-    /// splitmix64.
-    fn next(state: &mut u64) -> u64 {
-        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = *state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
+    use crate::predicates::splitmix64 as next;
 
     #[test]
     fn expansion_dot_sign_agrees_with_big_integers() {

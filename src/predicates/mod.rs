@@ -38,6 +38,16 @@
 //! `Regular_triangulation_3::side_of_power_sphere` with `perturb = true` (derivation in `perturb.rs`).
 
 mod exact;
+
+/// splitmix64: the fixed-seed generator of the predicate tests.
+#[cfg(test)]
+pub(crate) fn splitmix64(state: &mut u64) -> u64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
 mod filter;
 mod perturb;
 mod plane;

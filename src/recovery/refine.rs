@@ -9,6 +9,8 @@
 //!    the input triangles and is shrunk until it is star-shaped from the point; Lawson's flips
 //!    follow.
 //! 3. A circumcenter is declined when it lies beyond the surface seen from its tetrahedron,
+//!    when it would be joined by an edge shorter than its tetrahedron's shortest edge (only
+//!    where the mesh is not Delaunay: a guard against cascades),
 //!    in the diametral ball of an input triangle on its cavity's boundary or of an input edge
 //!    of its cavity, or, for a ratio split, in the protecting ball of an input vertex of its
 //!    cavity: radius the distance from the vertex to the nearest vertex, input edge or input
@@ -184,6 +186,9 @@ impl Refiner<'_> {
         let Some(cone) = self.star_shaped(start, &mut cavity, &c) else {
             return Ok(false);
         };
+        if split == Split::Ratio && self.too_close(t, &cone, &c) {
+            return Ok(false);
+        }
         let s = self.mesh.add_point(c);
         let cone: Vec<[u32; 4]> = cone.into_iter().map(|[a, b, d]| [a, b, d, s]).collect();
         let component = self.regions.component[start as usize];
@@ -309,6 +314,24 @@ impl Refiner<'_> {
             }
         }
         false
+    }
+
+    /// Whether `c` would be joined to a vertex of the cavity's boundary `cone` by an edge
+    /// shorter than the shortest edge of tetrahedron `t`, whose ratio it is meant to fix. In a
+    /// Delaunay mesh it never is (the circumsphere is empty); where the surface or unflippable
+    /// facets keep the mesh from being Delaunay, this keeps every new edge at least as long as
+    /// an existing one, so refinement cannot cascade toward a point close to the surface.
+    fn too_close(&self, t: u32, cone: &[[u32; 3]], c: &Point) -> bool {
+        let q = self.mesh.tets.vertices(t).map(|v| *self.mesh.point(v));
+        let mut shortest = f64::INFINITY;
+        for i in 0..4 {
+            for j in i + 1..4 {
+                shortest = shortest.min(dist(&q[i], &q[j]));
+            }
+        }
+        cone.iter()
+            .flatten()
+            .any(|&v| dist(c, self.mesh.point(v)) < shortest)
     }
 
     /// Shrinks `cavity` (always keeping `start`) until every boundary facet sees `c` on its
