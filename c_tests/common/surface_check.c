@@ -548,7 +548,8 @@ int surface_check(const SurfaceInput *in, const SurfaceResult *r, double radius_
     for (size_t t = 0; t < nt; t++) {
       const uint32_t *q = r->tets + 4 * t;
       if (q[0] >= nv || q[1] >= nv || q[2] >= nv || q[3] >= nv) continue;
-      double ratio = quality_tetrahedron(point(r->xyz, q[0]), point(r->xyz, q[1]), point(r->xyz, q[2]), point(r->xyz, q[3])).radius_edge;
+      TetQuality tq = quality_tetrahedron(point(r->xyz, q[0]), point(r->xyz, q[1]), point(r->xyz, q[2]), point(r->xyz, q[3]));
+      double ratio = tq.radius_edge;
       if (ratio > out->max_radius_edge) out->max_radius_edge = ratio;
       if (ratio > radius_edge_bound * (1 + SURFACE_QUALITY_ROUNDING)) {
         int on = 0;
@@ -561,13 +562,7 @@ int surface_check(const SurfaceInput *in, const SurfaceResult *r, double radius_
           if (forced_by_surface(in, r, shortest, r->labels[t], c)) {
             out->above_forced++;
           } else {
-            double l = INFINITY;
-            for (int i = 0; i < 4; i++)
-              for (int j = i + 1; j < 4; j++) {
-                double d = sqrt((double)distance2(point(r->xyz, q[i]), point(r->xyz, q[j])));
-                if (d < l) l = d;
-              }
-            out->above_near_vertex += vertex_closer_than(r, c, l);
+            out->above_near_vertex += vertex_closer_than(r, c, tq.shortest_edge);
           }
         }
       }

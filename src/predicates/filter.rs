@@ -107,6 +107,17 @@ const POWER_TEST_WEIGHT_UPPER: f64 = 1e120;
 const POWER_COPLANAR_WEIGHT_UPPER: f64 = 1e150;
 
 impl Bound {
+    /// The error bound `coefficient * unit` for every call within a box whose extents have
+    /// extremes `smallest` and `largest`; infinite (nothing certified) outside the range the
+    /// bound was derived for.
+    fn over_box(&self, unit: f64, smallest: f64, largest: f64) -> f64 {
+        if self.lower <= smallest && largest <= self.upper {
+            self.coefficient * unit
+        } else {
+            f64::INFINITY
+        }
+    }
+
     /// The sign of `det`, if its error bound `coefficient * unit` certifies it. `smallest` and
     /// `largest` are the extreme per-axis maxima the bound depends on.
     #[inline]
@@ -298,13 +309,7 @@ impl BoxBounds {
     pub fn new(lo: &Point, hi: &Point) -> Self {
         let m: [f64; 3] = std::array::from_fn(|k| hi[k] - lo[k]);
         let (smallest, largest) = extremes(&m);
-        let bound = |b: &Bound, unit: f64| {
-            if b.lower <= smallest && largest <= b.upper {
-                b.coefficient * unit
-            } else {
-                f64::INFINITY
-            }
-        };
+        let bound = |b: &Bound, unit: f64| b.over_box(unit, smallest, largest);
         BoxBounds {
             orient3d: bound(&ORIENT3D, m[0] * m[1] * m[2]),
             insphere: bound(&INSPHERE, m[0] * m[1] * m[2] * largest * largest),
@@ -352,13 +357,7 @@ impl BoxBounds2d {
     pub fn new(lo: &[f64; 2], hi: &[f64; 2]) -> Self {
         let m: [f64; 2] = std::array::from_fn(|k| hi[k] - lo[k]);
         let (smallest, largest) = extremes(&m);
-        let bound = |b: &Bound, unit: f64| {
-            if b.lower <= smallest && largest <= b.upper {
-                b.coefficient * unit
-            } else {
-                f64::INFINITY
-            }
-        };
+        let bound = |b: &Bound, unit: f64| b.over_box(unit, smallest, largest);
         BoxBounds2d {
             orient2d: bound(&ORIENT2D, m[0] * m[1]),
             incircle: bound(&INCIRCLE, m[0] * m[1] * largest * largest),
