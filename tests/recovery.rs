@@ -343,17 +343,22 @@ fn corpus_surfaces() {
 /// Flips on a Delaunay tetrahedralization of random points: every 2-3 flip and edge removal
 /// that is applied leaves a valid mesh (orientation, gluing, vertex stars), and protected
 /// facets and edges survive.
-#[test]
-fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
-    use delmesh::recovery::flips::{flip23, remove_edge, Protected};
-    use delmesh::recovery::tetmesh::TetMesh;
-    let mut state = 0x2545_f491_u64;
-    let mut next = || {
+/// Uniform numbers in [0, 1) from a xorshift generator seeded with `seed`.
+fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
         state ^= state << 13;
         state ^= state >> 7;
         state ^= state << 17;
         (state >> 11) as f64 / (1u64 << 53) as f64
-    };
+    }
+}
+
+#[test]
+fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
+    use delmesh::recovery::flips::{flip23, remove_edge, Protected};
+    use delmesh::recovery::tetmesh::TetMesh;
+    let mut next = uniform(0x2545_f491);
     let points: Vec<[f64; 3]> = (0..40).map(|_| [next(), next(), next()]).collect();
     let used: Vec<u32> = (0..40).collect();
     let mut mesh = TetMesh::delaunay(points, &used).unwrap();
@@ -394,6 +399,27 @@ fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
         flipped > 10 && removed > 10,
         "{flipped} flips, {removed} removals"
     );
+}
+
+#[test]
+fn interior_points_are_merged_or_refilled_away() {
+    use delmesh::recovery::suppress::merge_interior;
+    use delmesh::recovery::tetmesh::TetMesh;
+    let mut next = uniform(0x9e37_79b9);
+    // The corners of a cube first; the other points are strictly inside it.
+    let mut points: Vec<[f64; 3]> = (0..8)
+        .map(|c| [0, 1, 2].map(|k| ((c >> k) & 1) as f64))
+        .collect();
+    points.extend((0..60).map(|_| [next(), next(), next()].map(|x| 0.05 + 0.9 * x)));
+    let used: Vec<u32> = (0..points.len() as u32).collect();
+    let mut mesh = TetMesh::delaunay(points, &used).unwrap();
+    merge_interior(&mut mesh, 8).unwrap();
+    mesh.validate().unwrap();
+    let left = (8..68).filter(|&v| mesh.in_mesh(v)).count();
+    assert_eq!(left, 0, "interior points left");
+    for c in 0..8 {
+        assert!(mesh.in_mesh(c), "cube corner {c} removed");
+    }
 }
 
 /// Circumradius over shortest edge, and volume, of a tetrahedron.

@@ -1,11 +1,14 @@
 //! Recovery of a missing input edge by flips (George and Borouchaki §5.2, first part).
 //!
 //! The segment `ab` is followed from `a`: its first crossing is a facet or an edge of the
-//! star of `a` ([`first_crossing`]). A 2-3 flip of that facet, or the removal of that edge
-//! with the ring fanned from `a`, takes the crossing away: the segment then leaves the star
-//! of `a` one tetrahedron further. The same is tried from `b`. When neither end can advance,
-//! the edges of the first crossed facets are removed (any valid ring triangulation), which
-//! changes the stars without advancing, a bounded number of times.
+//! star of `a` ([`first_crossing`]). A 2-3 flip of that facet, or the removal of that edge,
+//! takes the crossing away: the segment then leaves the star of `a` one tetrahedron further.
+//! A crossed edge is coplanar with the segment; its ring is triangulated without any
+//! diagonal across that plane, which generalizes the fan from `a` and, when `b` is in the
+//! ring, is the 2-2 flip in the plane that coplanar input (grids, planar CAD faces) needs.
+//! The same is tried from `b`. When neither end can advance, the edges of the first crossed
+//! facets are removed (any valid ring triangulation), which changes the stars without
+//! advancing, a bounded number of times.
 
 use super::flips::{flip23, remove_edge, remove_edge_deep, Protected};
 use super::tetmesh::TetMesh;
@@ -68,35 +71,53 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
 }
 
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
-pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -> Result<bool> {
+/// Crossings are looked up again after every attempt: a failed one may keep flips. Without
+/// `deep`, only the flips that advance the segment are tried, never [`unblock`].
+pub fn recover_edge(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    [a, b]: [u32; 2],
+    deep: bool,
+) -> Result<bool> {
     for _ in 0..MAX_FLIPS {
-        let Some(from_a) = first_crossing(mesh, a, b)? else {
-            return Ok(true);
-        };
-        let Some(from_b) = first_crossing(mesh, b, a)? else {
-            return Ok(true);
-        };
-        for crossing in [from_a, from_b] {
-            if let Crossing::Vertex(v) = crossing {
-                return Err(vertex_on_edge(mesh, v, [a, b]));
+        let mut progress = false;
+        for [s, e] in [[a, b], [b, a]] {
+            let Some(c) = crossing_off_vertices(mesh, s, e)? else {
+                return Ok(true);
+            };
+            if advance(mesh, protected, [s, e], c)? {
+                progress = true;
+                break;
             }
         }
-        if advance(mesh, protected, a, from_a)? || advance(mesh, protected, b, from_b)? {
+        if progress {
             continue;
         }
-        if unblock(mesh, protected, from_a)? {
-            continue;
+        if !deep {
+            return Ok(false);
         }
-        // A failed unblocking may have kept flips: follow the segment from b again.
-        let Some(from_b) = first_crossing(mesh, b, a)? else {
-            return Ok(true);
-        };
-        if unblock(mesh, protected, from_b)? {
-            continue;
+        for [s, e] in [[a, b], [b, a]] {
+            let Some(c) = crossing_off_vertices(mesh, s, e)? else {
+                return Ok(true);
+            };
+            if unblock(mesh, protected, c)? {
+                progress = true;
+                break;
+            }
         }
-        return Ok(false);
+        if !progress {
+            return Ok(false);
+        }
     }
     Ok(false)
+}
+
+/// [`first_crossing`] from `s` toward `e`, an error when it is a vertex.
+fn crossing_off_vertices(mesh: &mut TetMesh, s: u32, e: u32) -> Result<Option<Crossing>> {
+    match first_crossing(mesh, s, e)? {
+        Some(Crossing::Vertex(v)) => Err(vertex_on_edge(mesh, v, [s, e])),
+        c => Ok(c),
+    }
 }
 
 /// The error for vertex `v` found on the segment `e`: bad input when all three are input
@@ -114,16 +135,33 @@ pub fn vertex_on_edge(mesh: &TetMesh, v: u32, e: [u32; 2]) -> Error {
     }
 }
 
-/// Takes away the first crossing from `start`: a 2-3 flip of the crossed facet, or the
-/// removal of the crossed edge with its ring fanned from `start`.
-fn advance(mesh: &mut TetMesh, protected: &Protected, start: u32, c: Crossing) -> Result<bool> {
+/// Takes away the first crossing of the segment from `start` to `end`: a 2-3 flip of the
+/// crossed facet, or the removal of the crossed edge. The segment meets that edge, so the
+/// four points are coplanar: any ring triangulation without a diagonal across their plane
+/// leaves the segment one tetrahedron further into the star of `start` (and recovers it, by
+/// a 2-2 flip in that plane, when `end` is in the ring).
+fn advance(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    [start, end]: [u32; 2],
+    c: Crossing,
+) -> Result<bool> {
     match c {
         Crossing::Facet(t, i) => flip23(mesh, protected, t, i, &|_, _, _| true),
-        Crossing::Edge(e, _) => {
-            let fan = |_: &TetMesh, u: u32, w: u32| u == start || w == start;
-            remove_edge(mesh, protected, e, &fan)
+        Crossing::Edge([x, y], _) => {
+            debug_assert_eq!(mesh.orient([x, y, start, end]), Sign::Zero);
+            remove_edge(mesh, protected, [x, y], &not_across(x, y, start))
         }
         Crossing::Vertex(_) => Ok(false),
+    }
+}
+
+/// Accepts a diagonal unless its ends lie strictly on opposite sides of the plane through
+/// `x`, `y` and `start`.
+fn not_across(x: u32, y: u32, start: u32) -> impl Fn(&TetMesh, u32, u32) -> bool {
+    move |m: &TetMesh, u: u32, w: u32| {
+        let su = m.orient([x, y, start, u]);
+        su == Sign::Zero || su != m.orient([x, y, start, w]).negate()
     }
 }
 

@@ -7,7 +7,9 @@
 //! 2. The Delaunay triangulation of the surface vertices and of the corners of an enlarged
 //!    bounding box (§5.1), so that no input triangle lies on the convex hull.
 //! 3. Missing edges, then missing triangles, are recovered (§5.2).
-//! 4. Points added on the surface are moved off it or merged away (§5.3, [`suppress`]).
+//! 4. Points added on the surface are moved off it, then merged away or removed where their
+//!    star can be filled again without them by this same recovery, flips only (§5.3,
+//!    [`suppress`]).
 //! 5. Regions are found by flood fill from the box across non-input facets; the box region
 //!    is dropped (§5.3, last remark).
 //! 6. Optional quality refinement with interior points only ([`refine`]: radius-edge and
@@ -91,7 +93,7 @@ pub fn tetrahedralize_surface(
     check_options(options)?;
     let mut mesh = enclosed_delaunay(points, tris)?;
     let mut part = Partition::new(tris);
-    recover(&mut mesh, &mut part, tris.len())?;
+    recover(&mut mesh, &mut part, 16 * tris.len() + 1024, true)?;
     let normals: Vec<Point> = tris.iter().map(|f| unit_normal(points, *f)).collect();
     suppress::suppress_all(&mut mesh, &mut part, &normals)?;
     suppress::merge_interior(&mut mesh, points.len() as u32 + 8)?;
@@ -111,9 +113,9 @@ pub fn tetrahedralize_surface(
 
 /// Recovers every subface (§5.2): sub-edges first, then subfaces, by flips; where flips
 /// fail, a point is added on the surface at the first crossing and the loop starts again
-/// with the new, smaller pieces. At most `16 * triangles + 1024` points are added.
-fn recover(mesh: &mut TetMesh, part: &mut Partition, triangles: usize) -> Result<()> {
-    let mut budget = 16 * triangles + 1024;
+/// with the new, smaller pieces. At most `budget` points are added. Without `deep`, edges
+/// are recovered by the flips that advance them only ([`edges::recover_edge`]).
+fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize, deep: bool) -> Result<()> {
     // What is recovered stays: flips never destroy a protected edge or facet.
     let mut edges_done: HashSet<[u32; 2]> = HashSet::new();
     let mut faces_done: HashSet<[u32; 3]> = HashSet::new();
@@ -124,7 +126,7 @@ fn recover(mesh: &mut TetMesh, part: &mut Partition, triangles: usize) -> Result
             .filter(|e| !edges_done.contains(e))
             .collect();
         let stuck = until_stable(pending, |&[a, b]| {
-            let done = edges::recover_edge(mesh, &part.protected, a, b)?;
+            let done = edges::recover_edge(mesh, &part.protected, [a, b], deep)?;
             if done {
                 edges_done.insert([a, b]);
             }
@@ -161,6 +163,36 @@ fn recover(mesh: &mut TetMesh, part: &mut Partition, triangles: usize) -> Result
             }
         }
     }
+}
+
+/// The tetrahedra filling the closed surface `triangles` (indices into `points`, a
+/// triangulated sphere) with no added point, as this module's recovery finds them by flips
+/// alone; `None` when it needs a point.
+fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
+    let mut mesh = enclosed_delaunay(points, triangles).ok()?;
+    let mut part = Partition::new(triangles);
+    recover(&mut mesh, &mut part, 0, false).ok()?;
+    let n = points.len() as u32;
+    let start = mesh.search_ball(n, |_, t| Some(t))?;
+    let mut outside = vec![false; mesh.tets.slots()];
+    outside[start as usize] = true;
+    let mut stack = vec![start];
+    while let Some(t) = stack.pop() {
+        for i in 0..4 {
+            let u = mesh.tets.neighbor(t, i);
+            if !outside[u as usize] && !part.protected.facet(mesh.facet(t, i)) {
+                outside[u as usize] = true;
+                stack.push(u);
+            }
+        }
+    }
+    let inside: Vec<[u32; 4]> = mesh
+        .tets
+        .live()
+        .filter(|&t| !outside[t as usize])
+        .map(|t| mesh.tets.vertices(t))
+        .collect();
+    inside.iter().flatten().all(|&v| v < n).then_some(inside)
 }
 
 /// Counts one added point against `budget`.

@@ -209,32 +209,21 @@ impl Refiner<'_> {
     /// an input triangle nor leaves the kept regions (the convex hull when it is kept);
     /// `None` when `c` is beyond one, on one, on a vertex, or the walk does not end.
     fn locate(&self, t: u32, c: &Point) -> Option<u32> {
-        let mut at = t;
-        'walk: for _ in 0..WALK {
-            let mut zeros = 0;
-            let mut on_surface = false;
-            for i in 0..4 {
-                let f = self.mesh.facet(at, i);
-                let [a, b, d] = f.map(|v| *self.mesh.point(v));
-                match orient3d(&a, &b, &d, c) {
-                    Sign::Negative => {
-                        let n = self.mesh.tets.neighbor(at, i);
-                        if self.protected.facet(f) || !self.regions.kept(n) {
-                            return None;
-                        }
-                        at = n;
-                        continue 'walk;
-                    }
-                    Sign::Zero => {
-                        zeros += 1;
-                        on_surface |= self.protected.facet(f);
-                    }
-                    Sign::Positive => {}
+        let at = self.mesh.walk(t, c, WALK, |_, f, n| {
+            !self.protected.facet(f) && self.regions.kept(n)
+        })?;
+        let mut zeros = 0;
+        for i in 0..4 {
+            let f = self.mesh.facet(at, i);
+            let [a, b, d] = f.map(|v| self.mesh.point(v));
+            if orient3d(a, b, d, c) == Sign::Zero {
+                if self.protected.facet(f) {
+                    return None;
                 }
+                zeros += 1;
             }
-            return (zeros < 3 && !on_surface).then_some(at);
         }
-        None
+        (zeros < 3).then_some(at)
     }
 
     /// The tetrahedra connected to `start` across non-input facets whose circumsphere

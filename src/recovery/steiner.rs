@@ -77,7 +77,8 @@ fn grown(mesh: &mut TetMesh, part: &Partition, set: &[u32]) -> Vec<u32> {
     out
 }
 
-/// The cone from `p` over the boundary of `set`, if every tetrahedron is positive.
+/// The cone from `p` over the boundary of `set`, if every tetrahedron is positive and every
+/// vertex of `set` stays.
 fn cone_over(mesh: &mut TetMesh, set: &[u32], p: Point) -> Result<Option<u32>> {
     for &t in set {
         mesh.tets.mark[t as usize] = 3;
@@ -94,6 +95,11 @@ fn cone_over(mesh: &mut TetMesh, set: &[u32], p: Point) -> Result<Option<u32>> {
     }
     for &t in set {
         mesh.tets.mark[t as usize] = 0;
+    }
+    let kept = |v: &u32| new.iter().any(|q| q.contains(v));
+    if !set.iter().all(|&t| mesh.tets.vertices(t).iter().all(kept)) {
+        // A vertex inside the set would vanish.
+        return Ok(None);
     }
     let s = mesh.add_point(p);
     if !new.iter().all(|&q| mesh.positive(q)) || !mesh.fits(set, &new) {

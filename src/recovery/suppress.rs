@@ -11,6 +11,10 @@
 //! the outline's triangulation from its side); here the move is searched along the sum of
 //! the piece's side normals, then toward the centroid of the piece's vertices, then between
 //! the two, halving the distance until every new tetrahedron is positive.
+//!
+//! The interior points then go where they can ([`merge_interior`]): collapsed onto a
+//! neighbour (the paper's merging), or removed by filling their star again without them,
+//! which the recovery of their link, a triangulated sphere, does by flips when it can.
 
 use std::collections::HashMap;
 
@@ -255,22 +259,38 @@ fn bounding_sides(
     sides
 }
 
-/// Merges the points moved off the surface into a neighbour where possible (George and
-/// Borouchaki §5.3, "some added points may simply vanish by merging"): point `s` collapses
-/// onto the nearest vertex `q` of its star for which every tetrahedron of the star without
-/// `q` stays positive with `s` replaced by `q`. Points `first..` are tried in order.
+/// Removes the points moved off the surface where possible (George and Borouchaki §5.3,
+/// "some added points may simply vanish by merging"). Point `s` collapses onto the nearest
+/// vertex `q` of its star for which every tetrahedron of the star without `q` stays positive
+/// with `s` replaced by `q`; points `first..` are tried in order until none collapses. Then
+/// each point left is removed when its star can be filled again without it ([`refill`]),
+/// and collapses are tried again.
 pub fn merge_interior(mesh: &mut TetMesh, first: u32) -> Result<()> {
     loop {
-        let mut merged = false;
-        for s in first..mesh.points.len() as u32 {
-            if mesh.in_mesh(s) {
+        loop {
+            let mut merged = false;
+            for s in left(mesh, first) {
                 merged |= collapse(mesh, s)?;
             }
+            if !merged {
+                break;
+            }
         }
-        if !merged {
+        let mut removed = false;
+        for s in left(mesh, first) {
+            removed |= refill(mesh, s)?;
+        }
+        if !removed {
             return Ok(());
         }
     }
+}
+
+/// The points `first..` still in the mesh.
+fn left(mesh: &TetMesh, first: u32) -> Vec<u32> {
+    (first..mesh.points.len() as u32)
+        .filter(|&s| mesh.in_mesh(s))
+        .collect()
 }
 
 /// Moves every point added off the surface (ids `first..`) to where its star's worst
@@ -327,6 +347,43 @@ fn relocate(mesh: &mut TetMesh, s: u32) {
         }
     }
     mesh.points[s as usize] = best.1;
+}
+
+/// Removes `s` by filling its star anew without it: its link, a triangulated sphere, is
+/// tetrahedralized by flips alone ([`super::fill_without_points`]); `false` if that fails.
+fn refill(mesh: &mut TetMesh, s: u32) -> Result<bool> {
+    let ball = mesh.ball(s);
+    let mut ids: Vec<u32> = Vec::new();
+    let mut link: Vec<[u32; 3]> = Vec::with_capacity(ball.len());
+    for &t in &ball {
+        let i = mesh
+            .tets
+            .vertices(t)
+            .iter()
+            .position(|&v| v == s)
+            .unwrap_or(0);
+        link.push(mesh.facet(t, i).map(|v| {
+            let at = ids.iter().position(|&w| w == v).unwrap_or_else(|| {
+                ids.push(v);
+                ids.len() - 1
+            });
+            at as u32
+        }));
+    }
+    if ids.contains(&crate::triangulation::tets::INFINITE) {
+        return Ok(false);
+    }
+    let points: Vec<Point> = ids.iter().map(|&v| *mesh.point(v)).collect();
+    let Some(filled) = super::fill_without_points(&points, &link) else {
+        return Ok(false);
+    };
+    let new: Vec<[u32; 4]> = filled.iter().map(|q| q.map(|v| ids[v as usize])).collect();
+    if !new.iter().all(|&q| mesh.positive(q)) || !mesh.fits(&ball, &new) {
+        return Ok(false);
+    }
+    mesh.replace(&ball, &new)?;
+    mesh.forget(s);
+    Ok(true)
 }
 
 /// Collapses `s` onto the nearest vertex of its star that allows it; `false` if none does.

@@ -176,6 +176,35 @@ impl TetMesh {
         result
     }
 
+    /// The tetrahedron whose closure holds `c`, by a visibility walk from `t`: a facet whose
+    /// plane has `c` strictly beyond it is crossed when `may_cross(self, facet, next)`. `None`
+    /// when a crossing is refused or the walk takes more than `steps` steps.
+    pub fn walk(
+        &self,
+        t: u32,
+        c: &Point,
+        steps: usize,
+        may_cross: impl Fn(&TetMesh, [u32; 3], u32) -> bool,
+    ) -> Option<u32> {
+        let mut at = t;
+        'walk: for _ in 0..steps {
+            for i in 0..4 {
+                let f = self.facet(at, i);
+                let [a, b, d] = f.map(|v| self.point(v));
+                if orient3d(a, b, d, c) == Sign::Negative {
+                    let n = self.tets.neighbor(at, i);
+                    if !may_cross(self, f, n) {
+                        return None;
+                    }
+                    at = n;
+                    continue 'walk;
+                }
+            }
+            return Some(at);
+        }
+        None
+    }
+
     /// A tetrahedron with edge `(a, b)`, if the edge exists.
     pub fn find_edge(&mut self, a: u32, b: u32) -> Option<u32> {
         self.search_ball(a, |m, t| m.tets.vertices(t).contains(&b).then_some(t))
