@@ -8,12 +8,13 @@
 //! ring, is the 2-2 flip in the plane that coplanar input (grids, planar CAD faces) needs.
 //! The same is tried from `b`. When neither end can advance, the edges of the first crossed
 //! facets are removed (any valid ring triangulation), which changes the stars without
-//! advancing, a bounded number of times.
+//! advancing, until the first crossings repeat or a bounded number of times.
 
 use super::flips::{flip23, remove_edge, remove_edge_deep, Protected};
 use super::tetmesh::TetMesh;
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::Sign;
+use crate::triangulation::tets::INFINITE;
 
 /// Most flips tried on one edge before it is declared stuck.
 const MAX_FLIPS: usize = 256;
@@ -72,13 +73,16 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
 
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
 /// Crossings are looked up again after every attempt: a failed one may keep flips. Without
-/// `deep`, only the flips that advance the segment are tried, never [`unblock`].
+/// `deep`, only the flips that advance the segment are tried, never [`unblock`]; with it,
+/// unblocking stops when it meets the first crossings from both ends it met before (its
+/// flips went round in a circle).
 pub fn recover_edge(
     mesh: &mut TetMesh,
     protected: &Protected,
     [a, b]: [u32; 2],
     deep: bool,
 ) -> Result<bool> {
+    let mut seen = rustc_hash::FxHashSet::default();
     for _ in 0..MAX_FLIPS {
         let mut progress = false;
         for [s, e] in [[a, b], [b, a]] {
@@ -96,6 +100,17 @@ pub fn recover_edge(
         if !deep {
             return Ok(false);
         }
+        let mut state = [[0; 3]; 2];
+        for (k, [s, e]) in [[a, b], [b, a]].into_iter().enumerate() {
+            let Some(c) = crossing_off_vertices(mesh, s, e)? else {
+                return Ok(true);
+            };
+            state[k] = crossed(mesh, c);
+        }
+        if !seen.insert(state) {
+            // The unblocking flips went round in a circle.
+            return Ok(false);
+        }
         for [s, e] in [[a, b], [b, a]] {
             let Some(c) = crossing_off_vertices(mesh, s, e)? else {
                 return Ok(true);
@@ -110,6 +125,17 @@ pub fn recover_edge(
         }
     }
     Ok(false)
+}
+
+/// The sorted vertices of the facet or edge (then with [`INFINITE`] last) a crossing names.
+fn crossed(mesh: &TetMesh, c: Crossing) -> [u32; 3] {
+    let mut v = match c {
+        Crossing::Facet(t, i) => mesh.facet(t, i),
+        Crossing::Edge([x, y], _) => [x, y, INFINITE],
+        Crossing::Vertex(v) => [v, INFINITE, INFINITE],
+    };
+    v.sort_unstable();
+    v
 }
 
 /// [`first_crossing`] from `s` toward `e`, an error when it is a vertex.
