@@ -117,8 +117,13 @@ pub fn tetrahedralize_surface(
 /// are recovered by the flips that advance them only ([`edges::recover_edge`]).
 fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize, deep: bool) -> Result<()> {
     // What is recovered stays: flips never destroy a protected edge or facet.
-    let mut edges_done: HashSet<[u32; 2]> = HashSet::new();
-    let mut faces_done: HashSet<[u32; 3]> = HashSet::new();
+    let (mut edges_done, present) = mesh.present(&part.protected);
+    let mut faces_done: HashSet<[u32; 3]> = part
+        .all_subfaces()
+        .into_iter()
+        .map(|(_, f)| f)
+        .filter(|f| present.contains(&tetmesh::key(*f)))
+        .collect();
     loop {
         let pending: Vec<[u32; 2]> = part
             .subedges()

@@ -10,6 +10,9 @@
 //! `points`; every live finite tetrahedron is positively oriented; adjacency is symmetric;
 //! `vertex_tet[v]` is a live tetrahedron incident to `v` for every vertex in use.
 
+use std::collections::HashSet;
+
+use super::flips::Protected;
 use crate::error::{Error, Result};
 use crate::predicates::{orient3d, Point, Sign};
 use crate::triangulation::tets::{Tets, FACE, INFINITE};
@@ -203,6 +206,28 @@ impl TetMesh {
             return Some(at);
         }
         None
+    }
+
+    /// The protected edges (sorted pairs) and facets (sorted triples) that are in the mesh,
+    /// found in one pass over the tetrahedra.
+    pub fn present(&self, protected: &Protected) -> (HashSet<[u32; 2]>, HashSet<Key>) {
+        let (mut edges, mut facets) = (HashSet::new(), HashSet::new());
+        for t in self.tets.live() {
+            let v = self.tets.vertices(t);
+            for i in 0..4 {
+                for j in i + 1..4 {
+                    let e = [v[i].min(v[j]), v[i].max(v[j])];
+                    if protected.edges.contains(&e) {
+                        edges.insert(e);
+                    }
+                }
+                let f = key(self.facet(t, i));
+                if protected.facets.contains(&f) {
+                    facets.insert(f);
+                }
+            }
+        }
+        (edges, facets)
     }
 
     /// A tetrahedron with edge `(a, b)`, if the edge exists.
