@@ -10,7 +10,7 @@
 //! used by kept tetrahedra; facet `k` is input triangle `k`, labels (from, to) with the
 //! right-hand normal pointing from `from` to `to`.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use super::tetmesh::{key, Key, TetMesh};
 use super::SurfaceOptions;

@@ -31,7 +31,7 @@ pub mod suppress;
 pub mod tetmesh;
 pub mod validate;
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet as HashSet;
 
 use crate::error::{Error, ErrorKind, Result};
 use crate::mesh::Mesh;

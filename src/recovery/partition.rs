@@ -9,7 +9,7 @@
 //! Invariants: the subfaces of a triangle form a disk whose boundary is the chains of its
 //! three edges; `protected` holds exactly the current subfaces and their edges.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use super::flips::Protected;
 use super::tetmesh::key;
@@ -52,9 +52,9 @@ impl Partition {
         let mut p = Partition {
             input: triangles.to_vec(),
             subfaces: triangles.iter().map(|&f| vec![f]).collect(),
-            edge_faces: HashMap::new(),
-            vertex_faces: HashMap::new(),
-            host: HashMap::new(),
+            edge_faces: HashMap::default(),
+            vertex_faces: HashMap::default(),
+            host: HashMap::default(),
             protected: Protected::default(),
         };
         for (k, &f) in triangles.iter().enumerate() {

@@ -16,7 +16,7 @@
 //! neighbour (the paper's merging), or removed by filling their star again without them,
 //! which the recovery of their link, a triangulated sphere, does by flips when it can.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
@@ -62,7 +62,7 @@ fn failure(message: String) -> Error {
 /// The subfaces of `face` around `p`, and the triangulation of their outline without `p`.
 fn patch(mesh: &TetMesh, part: &Partition, face: usize, p: u32) -> Result<Patch> {
     let old = part.fan(face, p);
-    let mut next: HashMap<u32, u32> = HashMap::new();
+    let mut next: HashMap<u32, u32> = HashMap::default();
     for &s in &old {
         let r = s.iter().position(|&x| x == p).unwrap_or(0);
         next.insert(s[(r + 1) % 3], s[(r + 2) % 3]);
@@ -108,7 +108,7 @@ fn suppress(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32)
         .iter()
         .map(|&f| patch(mesh, part, f, p))
         .collect::<Result<_>>()?;
-    let mut separators: HashMap<Key, (usize, [u32; 3])> = HashMap::new();
+    let mut separators: HashMap<Key, (usize, [u32; 3])> = HashMap::default();
     for (j, patch) in patches.iter().enumerate() {
         for &s in &patch.old {
             separators.insert(key(s), (j, s));

@@ -10,7 +10,7 @@
 //! `points`; every live finite tetrahedron is positively oriented; adjacency is symmetric;
 //! `vertex_tet[v]` is a live tetrahedron incident to `v` for every vertex in use.
 
-use std::collections::HashSet;
+use rustc_hash::FxHashSet;
 
 use super::flips::Protected;
 use crate::error::{Error, Result};
@@ -210,8 +210,8 @@ impl TetMesh {
 
     /// The protected edges (sorted pairs) and facets (sorted triples) that are in the mesh,
     /// found in one pass over the tetrahedra.
-    pub fn present(&self, protected: &Protected) -> (HashSet<[u32; 2]>, HashSet<Key>) {
-        let (mut edges, mut facets) = (HashSet::new(), HashSet::new());
+    pub fn present(&self, protected: &Protected) -> (FxHashSet<[u32; 2]>, FxHashSet<Key>) {
+        let (mut edges, mut facets) = (FxHashSet::default(), FxHashSet::default());
         for t in self.tets.live() {
             let v = self.tets.vertices(t);
             for i in 0..4 {
