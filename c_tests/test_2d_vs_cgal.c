@@ -404,6 +404,35 @@ static DelmeshMesh *conforming_checked(const Case *c, int split) {
   return mesh;
 }
 
+/* Pebay's degradation alpha h / r of the triangle abc (h the longest edge, r the inradius). */
+static double degradation(const double *a, const double *b, const double *c) {
+  double x = hypot(b[0] - a[0], b[1] - a[1]), y = hypot(c[0] - b[0], c[1] - b[1]), z = hypot(a[0] - c[0], a[1] - c[1]);
+  double area = fabs((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])) / 2;
+  return sqrt(3.0) / 6.0 * fmax(x, fmax(y, z)) * (x + y + z) / (2 * area);
+}
+
+/* delmesh_mesh_triangle_degradation against the same figures computed here from the mesh's
+ * arrays; both printed beside CGAL's. */
+static void check_degradation(const Case *c, const DelmeshMesh *mesh, const RefConforming2d *cgal) {
+  double best = 0, worst = 0, mean = 0;
+  DelmeshStatus s = delmesh_mesh_triangle_degradation(mesh, &best, &worst, &mean);
+  const double *v = delmesh_mesh_vertices(mesh);
+  const uint32_t *t = delmesh_mesh_triangles(mesh);
+  size_t count = delmesh_mesh_triangle_count(mesh);
+  double lo = INFINITY, hi = 0, sum = 0;
+  for (size_t k = 0; k < count; ++k) {
+    double d = degradation(v + 3 * t[3 * k], v + 3 * t[3 * k + 1], v + 3 * t[3 * k + 2]);
+    lo = fmin(lo, d), hi = fmax(hi, d), sum += d;
+  }
+  double m = count ? sum / (double)count : 0;
+  int same = s == DELMESH_OK && fabs(best - lo) <= 1e-12 * lo && fabs(worst - hi) <= 1e-12 * hi &&
+             fabs(mean - m) <= 1e-12 * m;
+  check_case(same, "%s: delmesh_mesh_triangle_degradation %.6g / %.6g / %.6g = best / worst / mean of the triangles",
+             c->name, best, worst, mean);
+  check_note("%-40s degradation worst / mean: delmesh %.4g / %.4g, CGAL %.4g / %.4g", c->name, worst, mean,
+             cgal->worst_degradation, cgal->mean_degradation);
+}
+
 static void run_case(const Case *c) {
   DelmeshMesh *mesh = conforming_checked(c, 0);
   if (!mesh) return;
@@ -417,6 +446,7 @@ static void run_case(const Case *c) {
     check_note("%-40s inserted points: delmesh %4zu  CGAL %4zu  (sub-edges %zu / %zu)", c->name, ours,
                theirs, delmesh_mesh_edge_count(mesh), cgal.constrained_edge_count);
     check_case(ours <= theirs, "%s: %zu inserted points, at most CGAL's %zu", c->name, ours, theirs);
+    check_degradation(c, mesh, &cgal);
     total_ours += ours;
     total_cgal += theirs;
   }
@@ -545,6 +575,11 @@ static void error_paths(void) {
   DelmeshStatus s = delmesh_triangulate_2d(xy, 6, NULL, 0, &options, &mesh);
   check_case(s == DELMESH_OK && delmesh_mesh_triangle_count(mesh) == 5,
              "Delaunay mode: 6 points, 5 on the hull, give 5 triangles");
+  double worst = 0;
+  s = delmesh_mesh_triangle_degradation(mesh, NULL, &worst, NULL);
+  check_case(s == DELMESH_OK && worst >= 1, "degradation with NULL outputs skipped: worst %g >= 1", worst);
+  check_case(delmesh_mesh_triangle_degradation(NULL, NULL, &worst, NULL) == DELMESH_ERROR_NULL_ARGUMENT,
+             "degradation of a NULL mesh: DELMESH_ERROR_NULL_ARGUMENT");
   delmesh_mesh_free(mesh);
 }
 

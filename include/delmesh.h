@@ -567,6 +567,22 @@ const int32_t *delmesh_mesh_tetrahedron_labels(const struct DelmeshMesh *m);
 size_t delmesh_mesh_triangle_count(const struct DelmeshMesh *m);
 
 /*
+ Pébay's triangle degradation `α h / r` over the 2D triangles of `m` (`h` the longest
+ edge, `r` the inradius, `α = √3 / 6`: 1 for the equilateral triangle, larger is worse):
+ its best, worst and mean values are written to `*best`, `*worst` and `*mean`, each
+ pointer NULL to skip it. A mesh without 2D triangles gives 0, 0, 0. Errors: NULL `m` ->
+ `DELMESH_ERROR_NULL_ARGUMENT`. Thread-safe.
+
+ # Safety
+ `m` is NULL or a mesh not yet freed; each of `best`, `worst`, `mean` is NULL or points
+ to a writable double.
+ */
+enum DelmeshStatus delmesh_mesh_triangle_degradation(const struct DelmeshMesh *m,
+                                                     double *best,
+                                                     double *worst,
+                                                     double *mean);
+
+/*
  Region label of each triangle of a 2D result (triangle_count entries). NULL for a
  NULL handle or no triangles. Owned by the mesh, valid until `delmesh_mesh_free`.
 

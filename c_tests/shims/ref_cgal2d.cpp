@@ -49,6 +49,15 @@ bool is_delaunay(const T &cdt) {
   return true;
 }
 
+// Pebay's degradation alpha h / r of the triangle abc.
+double degradation(const K::Point_2 &a, const K::Point_2 &b, const K::Point_2 &c) {
+  double x = std::sqrt(CGAL::to_double(CGAL::squared_distance(a, b)));
+  double y = std::sqrt(CGAL::to_double(CGAL::squared_distance(b, c)));
+  double z = std::sqrt(CGAL::to_double(CGAL::squared_distance(c, a)));
+  double area = std::abs(CGAL::to_double(CGAL::area(a, b, c)));
+  return std::sqrt(3.0) / 6.0 * std::max(x, std::max(y, z)) * (x + y + z) / (2.0 * area);
+}
+
 // The conforming Delaunay triangulation of the points and segments in a T (Cdt or
 // CrossingCdt), its figures written to *out.
 template <class T>
@@ -76,6 +85,15 @@ int conforming_2d(const double *xy, size_t n, const uint32_t *segments, size_t n
     out->vertex_count = cdt.number_of_vertices();
     out->constrained_edge_count = constrained;
     out->valid = cdt.is_valid() && is_delaunay(cdt);
+    out->worst_degradation = out->mean_degradation = 0;
+    size_t faces = 0;
+    for (auto f : cdt.finite_face_handles()) {
+      double d = degradation(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
+      out->worst_degradation = std::max(out->worst_degradation, d);
+      out->mean_degradation += d;
+      ++faces;
+    }
+    if (faces) out->mean_degradation /= static_cast<double>(faces);
     return 0;
   } catch (const std::exception &e) {
     return ref::fail(e.what());

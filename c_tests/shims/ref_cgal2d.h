@@ -24,6 +24,9 @@ typedef struct RefConforming2d {
   size_t constrained_edge_count;
   int valid;
   size_t intersection_count; /* vertices the constraints added (crossing variant; else 0) */
+  /* Pebay's degradation alpha h / r (h the longest edge, r the inradius, alpha = sqrt(3) / 6:
+   * 1 for the equilateral triangle) over the finite triangles: the worst and the mean. */
+  double worst_degradation, mean_degradation;
 } RefConforming2d;
 int ref_cgal_conforming_2d(const double *xy, size_t n, const uint32_t *segments,
                            size_t n_segments, RefConforming2d *out, RefTiming *timing);

@@ -239,6 +239,35 @@ pub unsafe extern "C" fn delmesh_mesh_duplicate_of(m: *const DelmeshMesh) -> *co
     unsafe { array("delmesh_mesh_duplicate_of", m, |mesh| &mesh.duplicate_of) }
 }
 
+/// Pébay's triangle degradation `α h / r` over the 2D triangles of `m` (`h` the longest
+/// edge, `r` the inradius, `α = √3 / 6`: 1 for the equilateral triangle, larger is worse):
+/// its best, worst and mean values are written to `*best`, `*worst` and `*mean`, each
+/// pointer NULL to skip it. A mesh without 2D triangles gives 0, 0, 0. Errors: NULL `m` ->
+/// `DELMESH_ERROR_NULL_ARGUMENT`. Thread-safe.
+///
+/// # Safety
+/// `m` is NULL or a mesh not yet freed; each of `best`, `worst`, `mean` is NULL or points
+/// to a writable double.
+#[no_mangle]
+pub unsafe extern "C" fn delmesh_mesh_triangle_degradation(
+    m: *const DelmeshMesh,
+    best: *mut f64,
+    worst: *mut f64,
+    mean: *mut f64,
+) -> DelmeshStatus {
+    call("delmesh_mesh_triangle_degradation", || {
+        let handle = unsafe { args::required(m, "m") }?;
+        let d = crate::mesh2d::degradation(&handle.mesh);
+        for (out, value) in [(best, d.best), (worst, d.worst), (mean, d.mean)] {
+            // SAFETY: NULL or writable (the caller's contract).
+            if let Some(out) = unsafe { out.as_mut() } {
+                *out = value;
+            }
+        }
+        Ok(())
+    })
+}
+
 /// Writes the mesh to the file `path` (UTF-8 or the platform's byte path,
 /// NUL-terminated), in the format its extension names:
 /// - `.mesh`: Medit ASCII (vertices, tetrahedra with their label, facets as triangles
