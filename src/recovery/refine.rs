@@ -179,6 +179,11 @@ impl Refiner<'_> {
         let Some(start) = self.locate(t, &c) else {
             return Ok(false);
         };
+        // The tetrahedron holding `c` is in its cavity: checked alone first, it declines
+        // most encroaching points before the cavity is searched.
+        if split != Split::Centroid && self.encroaches(&[start], &c, split) {
+            return Ok(false);
+        }
         let mut cavity = self.cavity(start, &c);
         if split != Split::Centroid && self.encroaches(&cavity, &c, split) {
             return Ok(false);
