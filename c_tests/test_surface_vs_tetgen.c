@@ -197,7 +197,7 @@ static const char *const known_limits[] = {"Chazelle k=4", "Chazelle k=5",      
 static const char *const known_more_steiner[] = {"terrain 20x20", "slab 1x1x0.01, 10x10"};
 /* Cases on which delmesh's refined mesh has more tetrahedra than TetGen -pq1.414Y's + 20%: the
  * points recovery leaves near the surface (where TetGen -pY needs none) ask for more refinement. */
-static const char *const known_more_tetrahedra[] = {"surfaces/handle.off", "surfaces/pipe.off"};
+static const char *const known_more_tetrahedra[] = {"surfaces/handle.off"};
 
 static int listed(const char *name, const char *const *list, size_t n) {
   for (size_t i = 0; i < n; i++)

@@ -403,6 +403,7 @@ fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
 
 #[test]
 fn interior_points_are_merged_or_refilled_away() {
+    use delmesh::recovery::flips::Protected;
     use delmesh::recovery::suppress::merge_interior;
     use delmesh::recovery::tetmesh::TetMesh;
     let mut next = uniform(0x9e37_79b9);
@@ -413,10 +414,28 @@ fn interior_points_are_merged_or_refilled_away() {
     points.extend((0..60).map(|_| [next(), next(), next()].map(|x| 0.05 + 0.9 * x)));
     let used: Vec<u32> = (0..points.len() as u32).collect();
     let mut mesh = TetMesh::delaunay(points, &used).unwrap();
-    merge_interior(&mut mesh, 8).unwrap();
+    // A facet through an interior point must stay: that point cannot go.
+    let t = mesh.ball(8)[0];
+    let kept = mesh.facet(
+        t,
+        mesh.tets.vertices(t).iter().position(|&v| v != 8).unwrap(),
+    );
+    let mut protected = Protected::default();
+    let mut k = kept;
+    k.sort_unstable();
+    protected.facets.insert(k);
+    merge_interior(&mut mesh, &protected, 8).unwrap();
     mesh.validate().unwrap();
-    let left = (8..68).filter(|&v| mesh.in_mesh(v)).count();
-    assert_eq!(left, 0, "interior points left");
+    assert!(
+        mesh.find_face(kept).is_some(),
+        "protected facet {kept:?} lost"
+    );
+    let left: Vec<u32> = (8..68).filter(|&v| mesh.in_mesh(v)).collect();
+    for v in kept {
+        assert!(mesh.in_mesh(v), "vertex {v} of the protected facet removed");
+    }
+    let others: Vec<&u32> = left.iter().filter(|v| !kept.contains(v)).collect();
+    assert!(others.is_empty(), "interior points left: {others:?}");
     for c in 0..8 {
         assert!(mesh.in_mesh(c), "cube corner {c} removed");
     }

@@ -72,16 +72,10 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
 }
 
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
-/// Crossings are looked up again after every attempt: a failed one may keep flips. Without
-/// `deep`, only the flips that advance the segment are tried, never [`unblock`]; with it,
-/// unblocking stops when it meets the first crossings from both ends it met before (its
-/// flips went round in a circle).
-pub fn recover_edge(
-    mesh: &mut TetMesh,
-    protected: &Protected,
-    [a, b]: [u32; 2],
-    deep: bool,
-) -> Result<bool> {
+/// Crossings are looked up again after every attempt: a failed one may keep flips.
+/// Unblocking ([`unblock`]) stops when it meets the first crossings from both ends it met
+/// before (its flips went round in a circle).
+pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -> Result<bool> {
     let mut seen = rustc_hash::FxHashSet::default();
     for _ in 0..MAX_FLIPS {
         let mut progress = false;
@@ -96,9 +90,6 @@ pub fn recover_edge(
         }
         if progress {
             continue;
-        }
-        if !deep {
-            return Ok(false);
         }
         let mut state = [[0; 3]; 2];
         for (k, [s, e]) in [[a, b], [b, a]].into_iter().enumerate() {

@@ -7,9 +7,9 @@
 //! 2. The Delaunay triangulation of the surface vertices and of the corners of an enlarged
 //!    bounding box (§5.1), so that no input triangle lies on the convex hull.
 //! 3. Missing edges, then missing triangles, are recovered (§5.2).
-//! 4. Points added on the surface are moved off it, then merged away or removed where their
-//!    star can be filled again without them by this same recovery, flips only (§5.3,
-//!    [`suppress`]).
+//! 4. Points added on the surface are moved off it, then merged away, or removed where their
+//!    star, or their star and a few layers around it, can be filled again without them by
+//!    this same recovery with no point allowed (§5.3, [`suppress`]).
 //! 5. Regions are found by flood fill from the box across non-input facets; the box region
 //!    is dropped (§5.3, last remark).
 //! 6. Optional quality refinement with interior points only ([`refine`]: radius-edge and
@@ -93,10 +93,10 @@ pub fn tetrahedralize_surface(
     check_options(options)?;
     let mut mesh = enclosed_delaunay(points, tris)?;
     let mut part = Partition::new(tris);
-    recover(&mut mesh, &mut part, 16 * tris.len() + 1024, true)?;
+    recover(&mut mesh, &mut part, 16 * tris.len() + 1024)?;
     let normals: Vec<Point> = tris.iter().map(|f| unit_normal(points, *f)).collect();
     suppress::suppress_all(&mut mesh, &mut part, &normals)?;
-    suppress::merge_interior(&mut mesh, points.len() as u32 + 8)?;
+    suppress::merge_interior(&mut mesh, &part.protected, points.len() as u32 + 8)?;
     suppress::relocate_interior(&mut mesh, points.len() as u32 + 8);
     let mut regions = classify::regions(&mut mesh, tris, options)?;
     if options.max_radius_edge_ratio > 0.0 || regions.max_volume.iter().any(|&v| v > 0.0) {
@@ -113,9 +113,8 @@ pub fn tetrahedralize_surface(
 
 /// Recovers every subface (§5.2): sub-edges first, then subfaces, by flips; where flips
 /// fail, a point is added on the surface at the first crossing and the loop starts again
-/// with the new, smaller pieces. At most `budget` points are added. Without `deep`, edges
-/// are recovered by the flips that advance them only ([`edges::recover_edge`]).
-fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize, deep: bool) -> Result<()> {
+/// with the new, smaller pieces. At most `budget` points are added.
+fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize) -> Result<()> {
     // What is recovered stays: flips never destroy a protected edge or facet.
     let (mut edges_done, present) = mesh.present(&part.protected);
     let mut faces_done: HashSet<[u32; 3]> = part
@@ -131,7 +130,7 @@ fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize, deep: bo
             .filter(|e| !edges_done.contains(e))
             .collect();
         let stuck = until_stable(pending, |&[a, b]| {
-            let done = edges::recover_edge(mesh, &part.protected, [a, b], deep)?;
+            let done = edges::recover_edge(mesh, &part.protected, a, b)?;
             if done {
                 edges_done.insert([a, b]);
             }
@@ -170,13 +169,13 @@ fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize, deep: bo
     }
 }
 
-/// The tetrahedra filling the closed surface `triangles` (indices into `points`, a
-/// triangulated sphere) with no added point, as this module's recovery finds them by flips
-/// alone; `None` when it needs a point.
+/// The tetrahedra filling the closed surface `triangles` (indices into `points`: the
+/// boundary of a region of tetrahedra) with no added point, as this module's recovery finds
+/// them; `None` when it needs a point.
 fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
     let mut mesh = enclosed_delaunay(points, triangles).ok()?;
     let mut part = Partition::new(triangles);
-    recover(&mut mesh, &mut part, 0, false).ok()?;
+    recover(&mut mesh, &mut part, 0).ok()?;
     let n = points.len() as u32;
     let start = mesh.search_ball(n, |_, t| Some(t))?;
     let mut outside = vec![false; mesh.tets.slots()];

@@ -13,11 +13,13 @@
 //! the two, halving the distance until every new tetrahedron is positive.
 //!
 //! The interior points then go where they can ([`merge_interior`]): collapsed onto a
-//! neighbour (the paper's merging), or removed by filling their star again without them,
-//! which the recovery of their link, a triangulated sphere, does by flips when it can.
+//! neighbour (the paper's merging), or removed by filling their star, or their star and a few
+//! layers around it, again without them: the recovery of the region's boundary, with no point
+//! allowed, does that when it can.
 
 use rustc_hash::FxHashMap as HashMap;
 
+use super::flips::Protected;
 use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
@@ -263,14 +265,15 @@ fn bounding_sides(
 /// "some added points may simply vanish by merging"). Point `s` collapses onto the nearest
 /// vertex `q` of its star for which every tetrahedron of the star without `q` stays positive
 /// with `s` replaced by `q`; points `first..` are tried in order until none collapses. Then
-/// each point left is removed when its star can be filled again without it ([`refill`]),
-/// and collapses are tried again.
-pub fn merge_interior(mesh: &mut TetMesh, first: u32) -> Result<()> {
-    loop {
+/// each point left is removed when its star, or its star and a few layers around it, can be
+/// filled again without it ([`refill`]), and collapses are tried again, a bounded number of
+/// times.
+pub fn merge_interior(mesh: &mut TetMesh, protected: &Protected, first: u32) -> Result<()> {
+    for _ in 0..REFILL_PASSES {
         loop {
             let mut merged = false;
             for s in left(mesh, first) {
-                merged |= collapse(mesh, s)?;
+                merged |= collapse(mesh, protected, s)?;
             }
             if !merged {
                 break;
@@ -278,13 +281,26 @@ pub fn merge_interior(mesh: &mut TetMesh, first: u32) -> Result<()> {
         }
         let mut removed = false;
         for s in left(mesh, first) {
-            removed |= refill(mesh, s)?;
+            for layers in 0..=REFILL_LAYERS {
+                if refill(mesh, protected, s, layers)? {
+                    removed = true;
+                    break;
+                }
+            }
         }
         if !removed {
-            return Ok(());
+            break;
         }
     }
+    Ok(())
 }
+
+/// Layers of tetrahedra around a point's star that [`refill`] adds at most, one at a time.
+const REFILL_LAYERS: usize = 4;
+
+/// Passes of [`refill`] over the points left, each after collapses (a removal can make a
+/// neighbour removable).
+const REFILL_PASSES: usize = 3;
 
 /// The points `first..` still in the mesh.
 fn left(mesh: &TetMesh, first: u32) -> Vec<u32> {
@@ -349,46 +365,80 @@ fn relocate(mesh: &mut TetMesh, s: u32) {
     mesh.points[s as usize] = best.1;
 }
 
-/// Removes `s` by filling its star anew without it: its link, a triangulated sphere, is
-/// tetrahedralized by flips alone ([`super::fill_without_points`]); `false` if that fails.
-fn refill(mesh: &mut TetMesh, s: u32) -> Result<bool> {
-    let ball = mesh.ball(s);
-    let mut ids: Vec<u32> = Vec::new();
-    let mut link: Vec<[u32; 3]> = Vec::with_capacity(ball.len());
-    for &t in &ball {
-        let i = mesh
-            .tets
-            .vertices(t)
-            .iter()
-            .position(|&v| v == s)
-            .unwrap_or(0);
-        link.push(mesh.facet(t, i).map(|v| {
-            let at = ids.iter().position(|&w| w == v).unwrap_or_else(|| {
-                ids.push(v);
-                ids.len() - 1
-            });
-            at as u32
-        }));
+/// Removes `s` by filling anew, without it, its star grown by `layers` layers of tetrahedra
+/// across unprotected facets (a star whose boundary cannot be filled, such as Schönhardt's
+/// prism, may be fillable with more around it). The region's boundary, a closed surface, is
+/// tetrahedralized by this module's recovery with no point allowed
+/// ([`super::fill_without_points`]); `false` if that fails, or if the region holds an input
+/// triangle or a vertex other than `s` inside.
+fn refill(mesh: &mut TetMesh, protected: &Protected, s: u32, layers: usize) -> Result<bool> {
+    let mut region = mesh.ball(s);
+    region.sort_unstable();
+    for _ in 0..layers {
+        let mut more = Vec::new();
+        for &t in &region {
+            for i in 0..4 {
+                let n = mesh.tets.neighbor(t, i);
+                if region.binary_search(&n).is_err() && !protected.facet(mesh.facet(t, i)) {
+                    more.push(n);
+                }
+            }
+        }
+        region.extend(more);
+        region.sort_unstable();
+        region.dedup();
     }
-    if ids.contains(&crate::triangulation::tets::INFINITE) {
+    let mut ids: Vec<u32> = Vec::new();
+    let mut boundary: Vec<[u32; 3]> = Vec::new();
+    for &t in &region {
+        for i in 0..4 {
+            let f = mesh.facet(t, i);
+            if region.binary_search(&mesh.tets.neighbor(t, i)).is_ok() {
+                if protected.facet(f) {
+                    return Ok(false);
+                }
+                continue;
+            }
+            boundary.push(f.map(|v| {
+                let at = ids.iter().position(|&w| w == v).unwrap_or_else(|| {
+                    ids.push(v);
+                    ids.len() - 1
+                });
+                at as u32
+            }));
+        }
+    }
+    let kept = region
+        .iter()
+        .flat_map(|&t| mesh.tets.vertices(t))
+        .all(|v| v == s || ids.contains(&v));
+    if !kept || ids.contains(&crate::triangulation::tets::INFINITE) {
         return Ok(false);
     }
     let points: Vec<Point> = ids.iter().map(|&v| *mesh.point(v)).collect();
-    let Some(filled) = super::fill_without_points(&points, &link) else {
+    let Some(filled) = super::fill_without_points(&points, &boundary) else {
         return Ok(false);
     };
     let new: Vec<[u32; 4]> = filled.iter().map(|q| q.map(|v| ids[v as usize])).collect();
-    if !new.iter().all(|&q| mesh.positive(q)) || !mesh.fits(&ball, &new) {
+    if !new.iter().all(|&q| mesh.positive(q)) || !mesh.fits(&region, &new) {
         return Ok(false);
     }
-    mesh.replace(&ball, &new)?;
+    mesh.replace(&region, &new)?;
     mesh.forget(s);
     Ok(true)
 }
 
-/// Collapses `s` onto the nearest vertex of its star that allows it; `false` if none does.
-fn collapse(mesh: &mut TetMesh, s: u32) -> Result<bool> {
+/// Collapses `s` onto the nearest vertex of its star that allows it; `false` if none does or
+/// `s` is a vertex of an input triangle.
+fn collapse(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
     let ball = mesh.ball(s);
+    let on_surface = ball.iter().any(|&t| {
+        let v = mesh.tets.vertices(t);
+        (0..4).any(|i| v[i] != s && protected.facet(mesh.facet(t, i)))
+    });
+    if on_surface {
+        return Ok(false);
+    }
     let mut link: Vec<u32> = ball
         .iter()
         .flat_map(|&t| mesh.tets.vertices(t))
