@@ -300,7 +300,7 @@ const REFILL_LAYERS: usize = 4;
 
 /// Passes of [`refill`] over the points left, each after collapses (a removal can make a
 /// neighbour removable).
-const REFILL_PASSES: usize = 3;
+const REFILL_PASSES: usize = 2;
 
 /// The points `first..` still in the mesh.
 fn left(mesh: &TetMesh, first: u32) -> Vec<u32> {
@@ -383,6 +383,10 @@ fn refill(mesh: &mut TetMesh, protected: &Protected, s: u32, layers: usize) -> R
                     more.push(n);
                 }
             }
+        }
+        if more.is_empty() {
+            // The same region as with one layer fewer, which [`merge_interior`] tried first.
+            return Ok(false);
         }
         region.extend(more);
         region.sort_unstable();
