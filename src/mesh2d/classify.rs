@@ -6,7 +6,7 @@
 //! `(Pi Pj)`; when `E` lies in one of them, `Q*` is a point of `E` seeing `[Pi Pj]` under the
 //! largest angle, `t = Pi Pj Q*` and `Δt` its closed circumdisk.
 
-use super::cloud::Cloud;
+use super::cloud::{Circumdisk, Cloud};
 use super::exact::{dot_sign, in_circumcircle};
 use crate::predicates::{orient2d, Sign};
 
@@ -82,15 +82,15 @@ pub fn classify_with(cloud: &Cloud, i: u32, j: u32, e: &[u32]) -> Theta2 {
     if dot_sign(pi, pj, p(q_star)) == Sign::Zero {
         return Theta2::T1_0;
     }
-    let disk = cloud.in_circumdisk(i, j, q_star);
+    let disk = match cloud.circumdisk(i, j, q_star) {
+        Circumdisk::Inside => return Theta2::T1_1,
+        Circumdisk::OnCircle(disk) => disk,
+    };
     if disk.is_empty() {
         return Theta2::T1_0;
     }
-    if disk.iter().any(|&(_, s)| s == Sign::Positive) {
-        return Theta2::T1_1;
-    }
     // Every point of F is on the circle of t, hence off the line (Pi Pj).
-    if disk.iter().all(|&(q, _)| orient2d(pi, pj, p(q)) == side) {
+    if disk.iter().all(|&q| orient2d(pi, pj, p(q)) == side) {
         Theta2::T1_2_0
     } else {
         Theta2::T1_2_1

@@ -14,6 +14,9 @@ use crate::predicates::Sign;
 pub struct Cloud {
     pub points: Vec<[f64; 2]>,
     lo: [f64; 2],
+    hi: [f64; 2],
+    /// Points in the buckets.
+    indexed: usize,
     /// Cells per unit length.
     scale: f64,
     nx: usize,
@@ -28,9 +31,32 @@ pub struct Cloud {
 /// End of a bucket list.
 const NONE: u32 = u32::MAX;
 
+/// `next` of a point in no bucket.
+const UNINDEXED: u32 = u32::MAX - 1;
+
 impl Cloud {
-    /// A grid of about `cells` buckets over the box `[lo, hi]`, holding no point yet.
+    /// A grid of about `cells` buckets over the box `[lo, hi]`, holding no point yet. The grid
+    /// is refined as points come (see [`Cloud::push`]).
     pub fn new(lo: [f64; 2], hi: [f64; 2], cells: usize) -> Self {
+        let mut cloud = Cloud {
+            points: Vec::new(),
+            lo,
+            hi,
+            indexed: 0,
+            scale: 0.0,
+            nx: 1,
+            ny: 1,
+            head: Vec::new(),
+            next: Vec::new(),
+        };
+        cloud.grid(cells);
+        cloud
+    }
+
+    /// Lays a grid of about `cells` buckets over the box and files the indexed points in it,
+    /// in index order.
+    fn grid(&mut self, cells: usize) {
+        let (lo, hi) = (self.lo, self.hi);
         let (w, h) = (hi[0] - lo[0], hi[1] - lo[1]);
         let area = (w * h).max(f64::MIN_POSITIVE);
         let side = (area / cells.max(1) as f64).sqrt();
@@ -42,15 +68,16 @@ impl Cloud {
         let scale = 1.0 / side;
         let count = |len: f64| ((len * scale).floor() as usize).clamp(1, 1 << 12);
         let (nx, ny) = (count(w) + 1, count(h) + 1);
-        let scale = if w.max(h) > 0.0 { scale } else { 0.0 };
-        Cloud {
-            points: Vec::new(),
-            lo,
-            scale,
-            nx,
-            ny,
-            head: vec![NONE; nx * ny],
-            next: Vec::new(),
+        self.scale = if w.max(h) > 0.0 { scale } else { 0.0 };
+        (self.nx, self.ny) = (nx, ny);
+        self.head = vec![NONE; nx * ny];
+        for i in 0..self.points.len() {
+            if self.next[i] != UNINDEXED {
+                let (cx, cy) = self.cell(&self.points[i]);
+                let cell = &mut self.head[cy * self.nx + cx];
+                self.next[i] = *cell;
+                *cell = i as u32;
+            }
         }
     }
 
@@ -59,8 +86,15 @@ impl Cloud {
         self.points
     }
 
-    /// Adds a point; returns its index.
+    /// Adds a point; returns its index. When the points outnumber the buckets twice, the grid
+    /// is laid again with twice as many buckets as points (up to 2^12 per side): the points
+    /// the subdivision adds crowd near small features, and a fixed grid would make every query
+    /// scan them.
     pub fn push(&mut self, p: [f64; 2]) -> u32 {
+        self.indexed += 1;
+        if self.indexed > 2 * self.cell_count() && self.nx.max(self.ny) < 1 << 12 {
+            self.grid(2 * self.indexed);
+        }
         let i = self.points.len() as u32;
         let (cx, cy) = self.cell(&p);
         let cell = &mut self.head[cy * self.nx + cx];
@@ -73,6 +107,7 @@ impl Cloud {
     /// Removes the last point added by [`Cloud::push`] (the last entry of its bucket).
     pub fn pop(&mut self) {
         if let (Some(p), Some(before)) = (self.points.pop(), self.next.pop()) {
+            self.indexed -= 1;
             let (cx, cy) = self.cell(&p);
             let cell = &mut self.head[cy * self.nx + cx];
             if *cell == self.points.len() as u32 {
@@ -83,7 +118,7 @@ impl Cloud {
 
     /// Adds a point that queries never return (an input copy of an earlier point).
     pub fn push_unindexed(&mut self, p: [f64; 2]) -> u32 {
-        self.next.push(NONE);
+        self.next.push(UNINDEXED);
         self.points.push(p);
         (self.points.len() - 1) as u32
     }
@@ -150,26 +185,67 @@ impl Cloud {
         found
     }
 
-    /// The points other than `a`, `b`, `c` in the closed circumdisk of the non-collinear
-    /// `a, b, c`, with the exact sign of each (`Positive` inside, `Zero` on the circle), in
-    /// increasing index order.
-    pub fn in_circumdisk(&self, a: u32, b: u32, c: u32) -> Vec<(u32, Sign)> {
+    /// Where the points other than `a`, `b`, `c` lie with respect to the circumcircle of the
+    /// non-collinear `a, b, c`, decided exactly: [`Circumdisk::Inside`] as soon as one lies
+    /// strictly inside, else the points on the circle in increasing index order. The cells
+    /// are visited in rings around the midpoint of `a b`, where a point inside is likeliest:
+    /// the circumdisk of a flat triangle covers most of the grid, and a scan in row order
+    /// would often meet its first inside point last.
+    pub fn circumdisk(&self, a: u32, b: u32, c: u32) -> Circumdisk {
         let [pa, pb, pc] = [a, b, c].map(|i| self.points[i as usize]);
         let (lo, hi) =
             circumdisk_box(&pa, &pb, &pc).unwrap_or(([f64::NEG_INFINITY; 2], [f64::INFINITY; 2]));
-        let mut found = Vec::new();
-        self.candidates(lo, hi, |i| {
-            if i == a || i == b || i == c {
-                return;
+        let (x0, y0) = self.cell(&lo);
+        let (x1, y1) = self.cell(&hi);
+        let (mx, my) = self.cell(&[(pa[0] + pb[0]) * 0.5, (pa[1] + pb[1]) * 0.5]);
+        let (cx, cy) = (mx.clamp(x0, x1), my.clamp(y0, y1));
+        let reach = (cx - x0).max(x1 - cx).max(cy - y0).max(y1 - cy);
+        let mut on_circle = Vec::new();
+        for r in 0..=reach {
+            for (x, y) in ring(cx, cy, r) {
+                if x < x0 || x > x1 || y < y0 || y > y1 {
+                    continue;
+                }
+                let mut i = self.head[y * self.nx + x];
+                while i != NONE {
+                    if i != a && i != b && i != c {
+                        match in_circumcircle(&pa, &pb, &pc, &self.points[i as usize]) {
+                            Sign::Positive => return Circumdisk::Inside,
+                            Sign::Zero => on_circle.push(i),
+                            Sign::Negative => {}
+                        }
+                    }
+                    i = self.next[i as usize];
+                }
             }
-            let s = in_circumcircle(&pa, &pb, &pc, &self.points[i as usize]);
-            if s != Sign::Negative {
-                found.push((i, s));
-            }
-        });
-        found.sort_unstable_by_key(|&(i, _)| i);
-        found
+        }
+        on_circle.sort_unstable();
+        Circumdisk::OnCircle(on_circle)
     }
+}
+
+/// What [`Cloud::circumdisk`] finds.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Circumdisk {
+    /// Some point lies strictly inside the circle.
+    Inside,
+    /// No point lies inside; these lie on the circle.
+    OnCircle(Vec<u32>),
+}
+
+/// The cells at distance `r` (in the maximum norm) from cell `(cx, cy)`, those with negative
+/// coordinates left out.
+fn ring(cx: usize, cy: usize, r: usize) -> impl Iterator<Item = (usize, usize)> {
+    let (cx, cy, r) = (cx as isize, cy as isize, r as isize);
+    let rows = (-r..=r).flat_map(move |dx| {
+        let top = (cx + dx, cy - r);
+        let bottom = (cx + dx, cy + r);
+        std::iter::once(top).chain((r > 0).then_some(bottom))
+    });
+    let sides = (1 - r..r).flat_map(move |dy| [(cx - r, cy + dy), (cx + r, cy + dy)]);
+    rows.chain(sides)
+        .filter(|&(x, y)| x >= 0 && y >= 0)
+        .map(|(x, y)| (x as usize, y as usize))
 }
 
 /// The bounding box of `a, b`, widened by a relative margin that covers the rounding of the
