@@ -114,12 +114,23 @@ pub fn min_dihedral(p: [P; 4]) -> f64 {
 
 /// Circumradius over shortest edge of the tetrahedron `p`; infinite when it is flat.
 pub fn radius_edge(p: [P; 4]) -> f64 {
-    let circumradius = norm(&sub(&circumcenter([&p[0], &p[1], &p[2], &p[3]]), &p[0]));
-    let shortest = (0..4)
+    ratio_or_infinite(circumradius(&p) / shortest_edge(&p))
+}
+
+/// The length of the shortest edge of the tetrahedron `p`.
+pub fn shortest_edge(p: &[P; 4]) -> f64 {
+    (0..4)
         .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
         .map(|(i, j)| norm(&sub(&p[i], &p[j])))
-        .fold(f64::INFINITY, f64::min);
-    let ratio = circumradius / shortest;
+        .fold(f64::INFINITY, f64::min)
+}
+
+fn circumradius(p: &[P; 4]) -> f64 {
+    norm(&sub(&circumcenter([&p[0], &p[1], &p[2], &p[3]]), &p[0]))
+}
+
+/// A ratio of lengths, infinite where a flat tetrahedron makes it undefined.
+fn ratio_or_infinite(ratio: f64) -> f64 {
     if ratio.is_nan() {
         f64::INFINITY
     } else {
@@ -135,13 +146,13 @@ pub fn tetrahedron(p: [P; 4]) -> TetQuality {
     let corners = [&p[0], &p[1], &p[2], &p[3]];
     let volume = tet_volume(corners).abs();
     let area: f64 = n.iter().map(|v| 0.5 * norm(v)).sum();
-    let circumradius = norm(&sub(&circumcenter(corners), &p[0]));
+    let circumradius = circumradius(&p);
     let inradius = 3.0 * volume / area;
     let ratio = 3.0 * inradius / circumradius;
     TetQuality {
         min_dihedral,
         max_dihedral,
-        radius_edge: radius_edge(p),
+        radius_edge: ratio_or_infinite(circumradius / shortest_edge(&p)),
         radius_ratio: if ratio.is_finite() {
             ratio.clamp(0.0, 1.0)
         } else {

@@ -161,13 +161,18 @@ impl Cloud {
         let (x1, y1) = self.cell(&hi);
         for cy in y0..=y1 {
             for cx in x0..=x1 {
-                let mut i = self.head[cy * self.nx + cx];
-                while i != NONE {
-                    f(i);
-                    i = self.next[i as usize];
-                }
+                self.bucket(cx, cy).for_each(&mut f);
             }
         }
+    }
+
+    /// The points in the bucket of cell `(x, y)`, last added first.
+    fn bucket(&self, x: usize, y: usize) -> impl Iterator<Item = u32> + '_ {
+        let first = self.head[y * self.nx + x];
+        std::iter::successors((first != NONE).then_some(first), |&i| {
+            let n = self.next[i as usize];
+            (n != NONE).then_some(n)
+        })
     }
 
     /// The points other than `a` and `b` in the closed small disk of `[a b]` (the disk with
@@ -206,16 +211,12 @@ impl Cloud {
                 if x < x0 || x > x1 || y < y0 || y > y1 {
                     continue;
                 }
-                let mut i = self.head[y * self.nx + x];
-                while i != NONE {
-                    if i != a && i != b && i != c {
-                        match in_circumcircle(&pa, &pb, &pc, &self.points[i as usize]) {
-                            Sign::Positive => return Circumdisk::Inside,
-                            Sign::Zero => on_circle.push(i),
-                            Sign::Negative => {}
-                        }
+                for i in self.bucket(x, y).filter(|&i| i != a && i != b && i != c) {
+                    match in_circumcircle(&pa, &pb, &pc, &self.points[i as usize]) {
+                        Sign::Positive => return Circumdisk::Inside,
+                        Sign::Zero => on_circle.push(i),
+                        Sign::Negative => {}
                     }
-                    i = self.next[i as usize];
                 }
             }
         }

@@ -72,46 +72,35 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
 }
 
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
-/// Crossings are looked up again after every attempt: a failed one may keep flips.
+/// Crossings are looked up again after every attempt that may have changed the mesh.
 /// Unblocking ([`unblock`]) stops when it meets the first crossings from both ends it met
 /// before (its flips went round in a circle).
 pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -> Result<bool> {
     let mut seen = rustc_hash::FxHashSet::default();
-    for _ in 0..MAX_FLIPS {
-        let mut progress = false;
-        for [s, e] in [[a, b], [b, a]] {
-            let Some(c) = crossing_off_vertices(mesh, s, e)? else {
-                return Ok(true);
-            };
-            if advance(mesh, protected, [s, e], c)? {
-                progress = true;
-                break;
-            }
-        }
-        if progress {
-            continue;
-        }
-        let mut state = [[0; 3]; 2];
+    'flips: for _ in 0..MAX_FLIPS {
+        // A failed advance changes nothing: its crossings still hold after both failed.
+        let mut crossings = [Crossing::Vertex(a); 2];
         for (k, [s, e]) in [[a, b], [b, a]].into_iter().enumerate() {
             let Some(c) = crossing_off_vertices(mesh, s, e)? else {
                 return Ok(true);
             };
-            state[k] = crossed(mesh, c);
+            if advance(mesh, protected, [s, e], c)? {
+                continue 'flips;
+            }
+            crossings[k] = c;
         }
-        if !seen.insert(state) {
+        if !seen.insert(crossings.map(|c| crossed(mesh, c))) {
             // The unblocking flips went round in a circle.
             return Ok(false);
         }
-        for [s, e] in [[a, b], [b, a]] {
-            let Some(c) = crossing_off_vertices(mesh, s, e)? else {
-                return Ok(true);
-            };
-            if unblock(mesh, protected, c)? {
-                progress = true;
-                break;
-            }
+        if unblock(mesh, protected, crossings[0])? {
+            continue;
         }
-        if !progress {
+        // A failed unblocking may keep flips: the crossing from b is looked up again.
+        let Some(c) = crossing_off_vertices(mesh, b, a)? else {
+            return Ok(true);
+        };
+        if !unblock(mesh, protected, c)? {
             return Ok(false);
         }
     }

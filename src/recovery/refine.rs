@@ -317,12 +317,7 @@ impl Refiner<'_> {
     /// an existing one, so refinement cannot cascade toward a point close to the surface.
     fn too_close(&self, t: u32, cone: &[[u32; 3]], c: &Point) -> bool {
         let q = self.mesh.tets.vertices(t).map(|v| *self.mesh.point(v));
-        let mut shortest = f64::INFINITY;
-        for i in 0..4 {
-            for j in i + 1..4 {
-                shortest = shortest.min(dist(&q[i], &q[j]));
-            }
-        }
+        let shortest = crate::quality::shortest_edge(&q);
         cone.iter()
             .flatten()
             .any(|&v| dist(c, self.mesh.point(v)) < shortest)

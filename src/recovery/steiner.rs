@@ -102,11 +102,10 @@ fn cone_over(mesh: &mut TetMesh, set: &[u32], p: Point) -> Result<Option<u32>> {
         return Ok(None);
     }
     let s = mesh.add_point(p);
-    if !new.iter().all(|&q| mesh.positive(q)) || !mesh.fits(set, &new) {
+    if !new.iter().all(|&q| mesh.positive(q)) || mesh.try_replace(set, &new)?.is_none() {
         mesh.pop_point();
         return Ok(None);
     }
-    mesh.replace(set, &new)?;
     Ok(Some(s))
 }
 

@@ -392,7 +392,9 @@ fn refill(mesh: &mut TetMesh, protected: &Protected, s: u32, layers: usize) -> R
         region.sort_unstable();
         region.dedup();
     }
+    // The boundary's vertices, numbered from 0 in order of appearance.
     let mut ids: Vec<u32> = Vec::new();
+    let mut number: HashMap<u32, u32> = HashMap::default();
     let mut boundary: Vec<[u32; 3]> = Vec::new();
     for &t in &region {
         for i in 0..4 {
@@ -404,19 +406,18 @@ fn refill(mesh: &mut TetMesh, protected: &Protected, s: u32, layers: usize) -> R
                 continue;
             }
             boundary.push(f.map(|v| {
-                let at = ids.iter().position(|&w| w == v).unwrap_or_else(|| {
+                *number.entry(v).or_insert_with(|| {
                     ids.push(v);
-                    ids.len() - 1
-                });
-                at as u32
+                    ids.len() as u32 - 1
+                })
             }));
         }
     }
     let kept = region
         .iter()
         .flat_map(|&t| mesh.tets.vertices(t))
-        .all(|v| v == s || ids.contains(&v));
-    if !kept || ids.contains(&crate::triangulation::tets::INFINITE) {
+        .all(|v| v == s || number.contains_key(&v));
+    if !kept || number.contains_key(&crate::triangulation::tets::INFINITE) {
         return Ok(false);
     }
     let points: Vec<Point> = ids.iter().map(|&v| *mesh.point(v)).collect();
@@ -424,10 +425,9 @@ fn refill(mesh: &mut TetMesh, protected: &Protected, s: u32, layers: usize) -> R
         return Ok(false);
     };
     let new: Vec<[u32; 4]> = filled.iter().map(|q| q.map(|v| ids[v as usize])).collect();
-    if !new.iter().all(|&q| mesh.positive(q)) || !mesh.fits(&region, &new) {
+    if !new.iter().all(|&q| mesh.positive(q)) || mesh.try_replace(&region, &new)?.is_none() {
         return Ok(false);
     }
-    mesh.replace(&region, &new)?;
     mesh.forget(s);
     Ok(true)
 }
@@ -464,8 +464,7 @@ fn collapse(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
             .filter(|v| !v.contains(&q))
             .map(|v| v.map(|x| if x == s { q } else { x }))
             .collect();
-        if new.iter().all(|&t| mesh.positive(t)) && mesh.fits(&ball, &new) {
-            mesh.replace(&ball, &new)?;
+        if new.iter().all(|&t| mesh.positive(t)) && mesh.try_replace(&ball, &new)?.is_some() {
             mesh.forget(s);
             return Ok(true);
         }

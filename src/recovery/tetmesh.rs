@@ -320,7 +320,8 @@ impl TetMesh {
         self.apply(old, new, &gluing)
     }
 
-    /// [`TetMesh::replace`] when `new` fits ([`TetMesh::fits`]); `None`, changing nothing,
+    /// [`TetMesh::replace`] when `new` fills exactly the region of `old`, facet for facet;
+    /// `None`, changing nothing,
     /// when it does not.
     pub fn try_replace(&mut self, old: &[u32], new: &[[u32; 4]]) -> Result<Option<Vec<u32>>> {
         let outer = self.outer_facets(old);
@@ -354,13 +355,6 @@ impl TetMesh {
             self.note_vertices(t);
         }
         Ok(ids)
-    }
-
-    /// Whether `new` would fill exactly the region of `old` facet for facet
-    /// ([`TetMesh::replace`]'s precondition).
-    pub fn fits(&mut self, old: &[u32], new: &[[u32; 4]]) -> bool {
-        let outer = self.outer_facets(old);
-        match_facets(&outer, new).is_ok()
     }
 
     /// The boundary facets of the set `old`, each with the facet glued to it outside.
