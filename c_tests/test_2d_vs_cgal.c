@@ -433,6 +433,58 @@ static void check_degradation(const Case *c, const DelmeshMesh *mesh, const RefC
              cgal->worst_degradation, cgal->mean_degradation);
 }
 
+/* Circumcenter of the triangle a, b, c (z ignored). */
+static void circumcenter(const double *a, const double *b, const double *c, double out[2]) {
+  double bx = b[0] - a[0], by = b[1] - a[1], cx = c[0] - a[0], cy = c[1] - a[1];
+  double d = 2 * (bx * cy - by * cx), b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+  out[0] = a[0] + (cy * b2 - by * c2) / d;
+  out[1] = a[1] + (bx * c2 - cx * b2) / d;
+}
+
+/* The Delaunay cover cells: the triangles of a cell share their circumcircle (floating point,
+ * relative to the triangle's size), and no cell spans a constraint sub-edge (Theorem 2.1:
+ * strongly admissible edges are cover edges). Cell and triangle counts printed. */
+static void check_cover(const Case *c, const DelmeshMesh *mesh) {
+  size_t count = delmesh_mesh_triangle_count(mesh), cells = delmesh_mesh_cover_cell_count(mesh);
+  const uint32_t *cell = delmesh_mesh_triangle_cover_cells(mesh);
+  const uint32_t *t = delmesh_mesh_triangles(mesh), *e = delmesh_mesh_edges(mesh);
+  const double *v = delmesh_mesh_vertices(mesh);
+  size_t ne = delmesh_mesh_edge_count(mesh), spans = 0, apart = 0;
+  double *centre = calloc(2 * (cells ? cells : 1), sizeof *centre);
+  int *seen = calloc(cells ? cells : 1, sizeof *seen);
+  int ok = cell != NULL && cells >= 1 && cells <= count && centre && seen;
+  for (size_t k = 0; ok && k < count; ++k) {
+    const double *a = v + 3 * t[3 * k], *b = v + 3 * t[3 * k + 1], *d = v + 3 * t[3 * k + 2];
+    double o[2], size = fmax(fabs(b[0] - a[0]) + fabs(b[1] - a[1]), fabs(d[0] - a[0]) + fabs(d[1] - a[1]));
+    circumcenter(a, b, d, o);
+    if (cell[k] >= cells) {
+      ok = 0;
+    } else if (!seen[cell[k]]) {
+      seen[cell[k]] = 1, centre[2 * cell[k]] = o[0], centre[2 * cell[k] + 1] = o[1];
+    } else if (fabs(o[0] - centre[2 * cell[k]]) + fabs(o[1] - centre[2 * cell[k] + 1]) > 1e-9 * size) {
+      apart++;
+    }
+  }
+  /* Each constraint sub-edge, and the triangles on its two sides. */
+  for (size_t j = 0; ok && j < ne; ++j) {
+    size_t side[2] = {SIZE_MAX, SIZE_MAX};
+    for (size_t k = 0; k < count; ++k) {
+      for (int r = 0; r < 3; ++r) {
+        uint32_t p = t[3 * k + r], q = t[3 * k + (r + 1) % 3];
+        if (p == e[2 * j] && q == e[2 * j + 1]) side[0] = k;
+        if (p == e[2 * j + 1] && q == e[2 * j]) side[1] = k;
+      }
+    }
+    if (side[0] != SIZE_MAX && side[1] != SIZE_MAX && cell[side[0]] == cell[side[1]]) spans++;
+  }
+  check_case(ok && apart == 0 && spans == 0,
+             "%s: %zu Delaunay cover cells for %zu triangles; %zu cells spanning a sub-edge, %zu triangles off "
+             "their cell's circle",
+             c->name, cells, count, spans, apart);
+  free(centre);
+  free(seen);
+}
+
 static void run_case(const Case *c) {
   DelmeshMesh *mesh = conforming_checked(c, 0);
   if (!mesh) return;
@@ -447,6 +499,7 @@ static void run_case(const Case *c) {
                theirs, delmesh_mesh_edge_count(mesh), cgal.constrained_edge_count);
     check_case(ours <= theirs, "%s: %zu inserted points, at most CGAL's %zu", c->name, ours, theirs);
     check_degradation(c, mesh, &cgal);
+    check_cover(c, mesh);
     total_ours += ours;
     total_cgal += theirs;
   }
@@ -580,6 +633,9 @@ static void error_paths(void) {
   check_case(s == DELMESH_OK && worst >= 1, "degradation with NULL outputs skipped: worst %g >= 1", worst);
   check_case(delmesh_mesh_triangle_degradation(NULL, NULL, &worst, NULL) == DELMESH_ERROR_NULL_ARGUMENT,
              "degradation of a NULL mesh: DELMESH_ERROR_NULL_ARGUMENT");
+  check_case(delmesh_mesh_cover_cell_count(mesh) == 5 && delmesh_mesh_triangle_cover_cells(NULL) == NULL &&
+                 delmesh_mesh_cover_cell_count(NULL) == 0,
+             "Delaunay cover of 6 points in general position: 5 cells; NULL mesh: 0 cells, NULL array");
   delmesh_mesh_free(mesh);
 }
 

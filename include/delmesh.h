@@ -447,6 +447,20 @@ enum DelmeshStatus delmesh_domain_new_labeled(DelmeshLabelFn f,
 const char *delmesh_last_error_message(void);
 
 /*
+ Number of cells of the Delaunay cover of a 2D result's triangles (Pébay, Definition
+ 2.3): two triangles sharing an edge belong to one cell when their four vertices are
+ cocircular (exact test), so a cell is a triangle or a convex polygon of four or more
+ cocircular vertices that another Delaunay triangulation of the same points may split
+ differently. Equal to `delmesh_mesh_triangle_count` when no four vertices of adjacent
+ triangles are cocircular. 0 for a NULL handle or a 3D result. Computed on the first call
+ to this function or `delmesh_mesh_triangle_cover_cells`, then kept; thread-safe.
+
+ # Safety
+ `m` is NULL or a mesh not yet freed.
+ */
+size_t delmesh_mesh_cover_cell_count(const struct DelmeshMesh *m);
+
+/*
  Number of input points merged onto an earlier exact copy (see `delmesh_mesh_duplicate_of`); 0 for
  a NULL handle or a result not made from input points.
 
@@ -565,6 +579,17 @@ const int32_t *delmesh_mesh_tetrahedron_labels(const struct DelmeshMesh *m);
  `m` is NULL or a mesh not yet freed.
  */
 size_t delmesh_mesh_triangle_count(const struct DelmeshMesh *m);
+
+/*
+ The Delaunay cover cell of each triangle of a 2D result (triangle_count entries, see
+ `delmesh_mesh_cover_cell_count`), cells numbered from 0 in the order of their first
+ triangle. NULL for a NULL handle or no triangles. Owned by the mesh, valid until
+ `delmesh_mesh_free`; thread-safe.
+
+ # Safety
+ `m` is NULL or a mesh not yet freed.
+ */
+const uint32_t *delmesh_mesh_triangle_cover_cells(const struct DelmeshMesh *m);
 
 /*
  Pébay's triangle degradation `α h / r` over the 2D triangles of `m` (`h` the longest

@@ -28,6 +28,7 @@ pub mod quality;
 pub mod recovery;
 pub mod refine;
 pub mod triangulation;
+pub mod union_find;
 
 pub use error::{Error, ErrorKind, Result};
 pub use mesh::Mesh;

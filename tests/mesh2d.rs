@@ -8,6 +8,7 @@ use std::collections::{HashMap, HashSet};
 use delmesh::error::ErrorKind;
 use delmesh::mesh2d::classify::{classify, Theta2};
 use delmesh::mesh2d::cloud::Cloud;
+use delmesh::mesh2d::cover;
 use delmesh::mesh2d::delaunay::Delaunay2d;
 use delmesh::mesh2d::exact::incircle_sos;
 use delmesh::mesh2d::refine::{QualityOptions, RegionSeed};
@@ -163,6 +164,7 @@ fn conform_checked(
     validate_mesh(&out.mesh).unwrap_or_else(|e| panic!("{case}: {e}"));
     assert_admissible(&out.mesh, case);
     assert_union(&out.mesh, xy, segments, case);
+    assert_no_cell_across_constraints(&out.mesh, case);
     let again = conforming_2d_with(&flat(xy), &flat_segments, options).expect("second run");
     assert_eq!(out.mesh, again.mesh, "{case}: not deterministic");
     eprintln!(
@@ -186,6 +188,29 @@ fn polyline(n: usize, closed: bool) -> Vec<[u32; 2]> {
         s.push([n as u32 - 1, 0]);
     }
     s
+}
+
+/// Theorem 2.1: a strongly admissible sub-edge is a Delaunay cover edge, so its two
+/// triangles are in different cover cells.
+fn assert_no_cell_across_constraints(mesh: &Mesh, case: &str) {
+    let (cells, _) = cover::cells(mesh);
+    let mut triangle_of: HashMap<(u32, u32), usize> = HashMap::new();
+    for (t, v) in mesh.triangles.chunks_exact(3).enumerate() {
+        for k in 0..3 {
+            triangle_of.insert((v[k], v[(k + 1) % 3]), t);
+        }
+    }
+    for e in mesh.edges.chunks_exact(2) {
+        if let (Some(&t), Some(&u)) = (
+            triangle_of.get(&(e[0], e[1])),
+            triangle_of.get(&(e[1], e[0])),
+        ) {
+            assert_ne!(
+                cells[t], cells[u],
+                "{case}: a cover cell spans sub-edge {e:?}"
+            );
+        }
+    }
 }
 
 fn grid(nx: usize, ny: usize) -> Vec<[f64; 2]> {
@@ -229,6 +254,56 @@ fn delaunay_of_random_points_is_valid_and_order_independent() {
         })
         .collect();
     assert_eq!(sorted_triangles(&mesh), renamed);
+}
+
+#[test]
+fn delaunay_cover_cells() {
+    // A grid: every unit square is a cell of two triangles.
+    let mesh = delaunay_2d(&flat(&grid(9, 6))).expect("grid");
+    let (cells, count) = cover::cells(&mesh);
+    assert_eq!(count, 8 * 5);
+    let mut sizes = vec![0; count];
+    for &c in &cells {
+        sizes[c as usize] += 1;
+    }
+    assert!(sizes.iter().all(|&s| s == 2), "{sizes:?}");
+    // The 12 integer points on the circle of radius 5 and the centre: the centre is inside
+    // the circle, so no four points of adjacent triangles are cocircular.
+    let mut ring: Vec<[f64; 2]> = [[5.0, 0.0], [4.0, 3.0], [3.0, 4.0]]
+        .into_iter()
+        .flat_map(|[x, y]| [[x, y], [-y, x], [-x, -y], [y, -x]])
+        .collect();
+    let mesh = delaunay_2d(&flat(&ring)).expect("ring");
+    assert_eq!(cover::cells(&mesh).1, 1, "12 cocircular points: one cell");
+    ring.push([0.0, 0.0]);
+    let mesh = delaunay_2d(&flat(&ring)).expect("ring and centre");
+    assert_eq!(cover::cells(&mesh).1, mesh.triangles.len() / 3);
+    // Random points, and grids: cells agree with the triangulation's own cover test.
+    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
+    let random: Vec<[f64; 2]> = (0..500)
+        .map(|_| [rng.gen::<f64>(), rng.gen::<f64>()])
+        .collect();
+    for points in [random, grid(12, 9)] {
+        let mesh = delaunay_2d(&flat(&points)).expect("mesh");
+        let (cells, _) = cover::cells(&mesh);
+        let dt = Delaunay2d::new(&points).expect("triangulation");
+        let edges = dt.directed_edges();
+        let mut triangle_of = HashMap::new();
+        for (t, v) in mesh.triangles.chunks_exact(3).enumerate() {
+            for k in 0..3 {
+                triangle_of.insert((v[k], v[(k + 1) % 3]), t);
+            }
+        }
+        for (&(a, b), &t) in &triangle_of {
+            if let Some(&u) = triangle_of.get(&(b, a)) {
+                assert_eq!(
+                    cells[t] != cells[u],
+                    dt.in_delaunay_cover(a, b, &edges),
+                    "edge ({a}, {b})"
+                );
+            }
+        }
+    }
 }
 
 #[test]

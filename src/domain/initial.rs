@@ -13,6 +13,7 @@ use super::{crossing, Domain};
 use crate::error::{Error, Result};
 use crate::geometry::dist2;
 use crate::predicates::Point;
+use crate::union_find::UnionFind;
 
 /// Grid cells per axis.
 const GRID: usize = 24;
@@ -126,7 +127,9 @@ impl Grid {
                 if s != u32::MAX {
                     match first {
                         None => first = Some(s),
-                        Some(f) => sets.union(f, s),
+                        Some(f) => {
+                            sets.union(f, s);
+                        }
                     }
                 }
             }
@@ -171,35 +174,4 @@ fn spaced(candidates: &[Point], h: f64) -> Vec<Point> {
         }
     }
     kept
-}
-
-struct UnionFind {
-    parent: Vec<u32>,
-}
-
-impl UnionFind {
-    fn new(n: usize) -> Self {
-        UnionFind {
-            parent: (0..n as u32).collect(),
-        }
-    }
-
-    fn find(&mut self, mut x: u32) -> u32 {
-        while self.parent[x as usize] != x {
-            let up = self.parent[self.parent[x as usize] as usize];
-            self.parent[x as usize] = up;
-            x = up;
-        }
-        x
-    }
-
-    fn union(&mut self, a: u32, b: u32) {
-        let (a, b) = (self.find(a), self.find(b));
-        // The smaller root wins: the result does not depend on the order of the calls.
-        if a < b {
-            self.parent[b as usize] = a;
-        } else {
-            self.parent[a as usize] = b;
-        }
-    }
 }

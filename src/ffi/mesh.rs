@@ -5,6 +5,7 @@
 
 use std::ffi::c_char;
 use std::ptr::null;
+use std::sync::OnceLock;
 
 use super::{args, call, value, DelmeshStatus};
 use crate::mesh::Mesh;
@@ -17,17 +18,28 @@ use crate::mesh::Mesh;
 /// not run concurrently with any other use of the same mesh.
 pub struct DelmeshMesh {
     mesh: Mesh,
+    /// The Delaunay cover cells of the 2D triangles and their count, computed on first use.
+    cover: OnceLock<(Vec<u32>, usize)>,
 }
 
 impl DelmeshMesh {
     /// Moves `mesh` to the heap as a handle owned by the C caller.
     pub fn into_raw(mesh: Mesh) -> *mut DelmeshMesh {
-        Box::into_raw(Box::new(DelmeshMesh { mesh }))
+        Box::into_raw(Box::new(DelmeshMesh {
+            mesh,
+            cover: OnceLock::new(),
+        }))
     }
 
     /// The mesh behind the handle.
     pub fn mesh(&self) -> &Mesh {
         &self.mesh
+    }
+
+    /// The Delaunay cover cells of the 2D triangles ([`crate::mesh2d::cover::cells`]).
+    fn cover(&self) -> &(Vec<u32>, usize) {
+        self.cover
+            .get_or_init(|| crate::mesh2d::cover::cells(&self.mesh))
     }
 }
 
@@ -237,6 +249,46 @@ pub unsafe extern "C" fn delmesh_mesh_duplicate_count(m: *const DelmeshMesh) -> 
 #[no_mangle]
 pub unsafe extern "C" fn delmesh_mesh_duplicate_of(m: *const DelmeshMesh) -> *const u32 {
     unsafe { array("delmesh_mesh_duplicate_of", m, |mesh| &mesh.duplicate_of) }
+}
+
+/// Number of cells of the Delaunay cover of a 2D result's triangles (Pébay, Definition
+/// 2.3): two triangles sharing an edge belong to one cell when their four vertices are
+/// cocircular (exact test), so a cell is a triangle or a convex polygon of four or more
+/// cocircular vertices that another Delaunay triangulation of the same points may split
+/// differently. Equal to `delmesh_mesh_triangle_count` when no four vertices of adjacent
+/// triangles are cocircular. 0 for a NULL handle or a 3D result. Computed on the first call
+/// to this function or `delmesh_mesh_triangle_cover_cells`, then kept; thread-safe.
+///
+/// # Safety
+/// `m` is NULL or a mesh not yet freed.
+#[no_mangle]
+pub unsafe extern "C" fn delmesh_mesh_cover_cell_count(m: *const DelmeshMesh) -> usize {
+    // SAFETY: the caller's contract.
+    let handle = unsafe { m.as_ref() };
+    value("delmesh_mesh_cover_cell_count", 0, || {
+        handle.map_or(0, |h| h.cover().1)
+    })
+}
+
+/// The Delaunay cover cell of each triangle of a 2D result (triangle_count entries, see
+/// `delmesh_mesh_cover_cell_count`), cells numbered from 0 in the order of their first
+/// triangle. NULL for a NULL handle or no triangles. Owned by the mesh, valid until
+/// `delmesh_mesh_free`; thread-safe.
+///
+/// # Safety
+/// `m` is NULL or a mesh not yet freed.
+#[no_mangle]
+pub unsafe extern "C" fn delmesh_mesh_triangle_cover_cells(m: *const DelmeshMesh) -> *const u32 {
+    // SAFETY: the caller's contract.
+    let handle = unsafe { m.as_ref() };
+    value(
+        "delmesh_mesh_triangle_cover_cells",
+        null(),
+        || match handle.map(|h| &h.cover().0) {
+            Some(cells) if !cells.is_empty() => cells.as_ptr(),
+            _ => null(),
+        },
+    )
 }
 
 /// Pébay's triangle degradation `α h / r` over the 2D triangles of `m` (`h` the longest

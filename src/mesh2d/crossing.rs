@@ -22,6 +22,7 @@ use num_traits::{Signed, ToPrimitive, Zero};
 
 use super::cloud::Cloud;
 use super::exact::scaled_integers;
+use crate::union_find::UnionFind;
 
 /// One crossing pair's intersection point, exact: on the pair's first segment at
 /// `λ = lambda[0] / den`, on its second at `lambda[1] / den`; its coordinates are
@@ -128,14 +129,7 @@ pub fn split_at_crossings(
         let c = &crossings[k as usize];
         (&c.lambda[side], &c.den)
     };
-    let mut parent: Vec<u32> = (0..pairs.len() as u32).collect();
-    fn root(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            parent[x as usize] = parent[parent[x as usize] as usize];
-            x = parent[x as usize];
-        }
-        x
-    }
+    let mut sets = UnionFind::new(pairs.len());
     for list in &mut on {
         list.sort_by(|x, y| {
             let ((lx, dx), (ly, dy)) = (lambda(x), lambda(y));
@@ -145,8 +139,7 @@ pub fn split_at_crossings(
             let ((lx, dx), (ly, dy)) = (lambda(&w[0]), lambda(&w[1]));
             if cmp_ratio(lx, dx, ly, dy) == Ordering::Equal {
                 // The same point: the union keeps the smaller pair as the root.
-                let (rx, ry) = (root(&mut parent, w[0].0), root(&mut parent, w[1].0));
-                parent[rx.max(ry) as usize] = rx.min(ry);
+                sets.union(w[0].0, w[1].0);
             }
         }
     }
@@ -154,7 +147,7 @@ pub fn split_at_crossings(
     let mut vertex = vec![u32::MAX; pairs.len()];
     let mut added = 0;
     for k in 0..pairs.len() as u32 {
-        let r = root(&mut parent, k);
+        let r = sets.find(k);
         if r == k {
             vertex[k as usize] = cloud.push(crossings[k as usize].rounded());
             added += 1;
@@ -165,7 +158,7 @@ pub fn split_at_crossings(
     for (s, list) in on.iter().enumerate() {
         let mut last = segs[s][0];
         for &(k, _) in list {
-            let v = vertex[root(&mut parent, k) as usize];
+            let v = vertex[sets.find(k) as usize];
             if v != last {
                 pieces.push([last, v]);
                 origin.push(s as u32);

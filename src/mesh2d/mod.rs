@@ -11,6 +11,8 @@
 //!   closed nodes of Definition 3.1, edges by decreasing count of points in their small disk,
 //!   a bucket grid for the small-disk queries of §3.3), with a better `nettoyage` distance than
 //!   the paper's `d_i / 2`; Algorithm 3.1 as an option;
+//! - [`cover`]: §2 — the cells of the Delaunay cover (Definition 2.3) of a result: its
+//!   triangles grouped across edges whose four points are cocircular;
 //! - [`delaunay`]: the Delaunay triangulation itself (§1.2), Bowyer–Watson with a walk, ties
 //!   broken by a symbolic perturbation so that the output is a function of the point set;
 //! - [`refine`]: quality triangulation of the domain (Ruppert's Delaunay refinement with
@@ -29,6 +31,7 @@
 
 pub mod classify;
 pub mod cloud;
+pub mod cover;
 pub mod crossing;
 pub mod delaunay;
 pub mod exact;

@@ -53,6 +53,7 @@ use super::cloud::Cloud;
 use super::exact::dot_sign;
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::Sign;
+use crate::union_find::UnionFind;
 
 /// Which of Pébay's algorithms runs.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -216,25 +217,16 @@ impl Subdivision {
             return false;
         }
         let centre = self.point(p);
-        let mut parent: Vec<usize> = (0..node.len()).collect();
-        fn root(parent: &mut [usize], mut x: usize) -> usize {
-            while parent[x] != x {
-                parent[x] = parent[parent[x]];
-                x = parent[x];
-            }
-            x
-        }
+        let mut sets = UnionFind::new(node.len());
         for u in 0..node.len() {
             for v in u + 1..node.len() {
                 let (a, b) = (self.point(node[u].1), self.point(node[v].1));
                 if dot_sign(&a, &b, &centre) != Sign::Positive {
                     continue;
                 }
-                let (ru, rv) = (root(&mut parent, u), root(&mut parent, v));
-                if ru == rv {
+                if !sets.union(u as u32, v as u32) {
                     return true;
                 }
-                parent[ru] = rv;
             }
         }
         false
