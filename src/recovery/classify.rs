@@ -53,17 +53,78 @@ pub fn regions(
     triangles: &[[u32; 3]],
     options: &SurfaceOptions,
 ) -> Result<Regions> {
-    let input: HashMap<Key, usize> = triangles
-        .iter()
-        .enumerate()
-        .map(|(k, &f)| (key(f), k))
-        .collect();
+    let input = InputFacets::find(mesh, triangles)?;
     let component = components(mesh, &input);
     label(mesh, &input, component, triangles, options)
 }
 
+/// Where the input triangles are in the mesh: which facets of each tetrahedron slot are input
+/// triangles (bit `i` of `mask[t]` for facet `i`), and one facet `(t, i)` per triangle. Found
+/// in one pass over the tetrahedra (a search of each triangle's facet from a vertex costs
+/// several times more).
+struct InputFacets {
+    mask: Vec<u8>,
+    at: Vec<(u32, usize)>,
+}
+
+impl InputFacets {
+    /// Errors when an input triangle is not a facet of the mesh.
+    fn find(mesh: &TetMesh, triangles: &[[u32; 3]]) -> Result<Self> {
+        let index: HashMap<Key, u32> = triangles
+            .iter()
+            .enumerate()
+            .map(|(k, &f)| (key(f), k as u32))
+            .collect();
+        let mut mask = vec![0u8; mesh.tets.slots()];
+        let mut at = vec![(u32::MAX, 0); triangles.len()];
+        for t in mesh.tets.live() {
+            for i in 0..4 {
+                // Each facet once, from the lower of its two tetrahedra.
+                let n = mesh.tets.neighbor(t, i);
+                if n < t {
+                    continue;
+                }
+                if let Some(&k) = index.get(&key(mesh.facet(t, i))) {
+                    let j = (0..4)
+                        .find(|&j| mesh.tets.neighbor(n, j) == t)
+                        .ok_or_else(|| {
+                            Error::internal(format!("tetrahedra {t} and {n} not glued"))
+                        })?;
+                    mask[t as usize] |= 1 << i;
+                    mask[n as usize] |= 1 << j;
+                    at[k as usize] = (t, i);
+                }
+            }
+        }
+        if let Some(k) = at.iter().position(|&(t, _)| t == u32::MAX) {
+            let f = triangles[k];
+            return Err(Error::internal(format!(
+                "input triangle {k} {f:?} is not a facet"
+            )));
+        }
+        Ok(InputFacets { mask, at })
+    }
+
+    /// Whether facet `i` of tetrahedron `t` is an input triangle.
+    fn contains(&self, t: u32, i: usize) -> bool {
+        self.mask[t as usize] & (1 << i) != 0
+    }
+
+    /// The tetrahedra on the front (right-hand normal) and back sides of input triangle `k`,
+    /// `f`.
+    fn sides(&self, mesh: &TetMesh, k: usize, f: [u32; 3]) -> (u32, u32) {
+        let (t, i) = self.at[k];
+        let n = mesh.tets.neighbor(t, i);
+        if mesh.in_front(t, i, f) {
+            (t, n)
+        } else {
+            (n, t)
+        }
+    }
+}
+
 /// Connected components across non-input facets; the infinite tetrahedra's is [`OUTSIDE`].
-fn components(mesh: &TetMesh, input: &HashMap<Key, usize>) -> Vec<u32> {
+fn components(mesh: &TetMesh, input: &InputFacets) -> Vec<u32> {
     let slots = mesh.tets.slots();
     let mut component = vec![u32::MAX; slots];
     let start = mesh
@@ -82,8 +143,7 @@ fn components(mesh: &TetMesh, input: &HashMap<Key, usize>) -> Vec<u32> {
         while let Some(t) = stack.pop() {
             for i in 0..4 {
                 let n = mesh.tets.neighbor(t, i);
-                if component[n as usize] == u32::MAX && !input.contains_key(&key(mesh.facet(t, i)))
-                {
+                if component[n as usize] == u32::MAX && !input.contains(t, i) {
                     component[n as usize] = next;
                     stack.push(n);
                 }
@@ -94,24 +154,11 @@ fn components(mesh: &TetMesh, input: &HashMap<Key, usize>) -> Vec<u32> {
     component
 }
 
-/// The tetrahedra on the front (right-hand normal) and back sides of input triangle `f`.
-fn sides(mesh: &mut TetMesh, f: [u32; 3]) -> Result<(u32, u32)> {
-    let (t, i) = mesh
-        .find_face(f)
-        .ok_or_else(|| Error::internal(format!("input triangle {f:?} is not a facet")))?;
-    let n = mesh.tets.neighbor(t, i);
-    Ok(if mesh.in_front(t, i, f) {
-        (t, n)
-    } else {
-        (n, t)
-    })
-}
-
 /// Labels of the components: numbered by smallest bounding triangle (front side first), then
 /// region seeds relabel and hole seeds drop theirs.
 fn label(
     mesh: &mut TetMesh,
-    input: &HashMap<Key, usize>,
+    input: &InputFacets,
     component: Vec<u32>,
     triangles: &[[u32; 3]],
     options: &SurfaceOptions,
@@ -130,8 +177,8 @@ fn label(
         .max()
         .unwrap_or(0)
         .max(0);
-    for &f in triangles {
-        let (front, back) = sides(mesh, f)?;
+    for (k, &f) in triangles.iter().enumerate() {
+        let (front, back) = input.sides(mesh, k, f);
         for t in [front, back] {
             let c = component[t as usize];
             if c != OUTSIDE && label[c as usize] == 0 {
@@ -168,7 +215,7 @@ fn label(
 /// triangle is refused.
 fn seed_component(
     mesh: &TetMesh,
-    input: &HashMap<Key, usize>,
+    input: &InputFacets,
     component: &[u32],
     p: [f64; 3],
     what: &str,
@@ -188,8 +235,7 @@ fn seed_component(
             continue;
         }
         // In the closed tetrahedron: fine unless on an input triangle.
-        let on_surface =
-            (0..4).any(|i| signs[i] == Sign::Zero && input.contains_key(&key(mesh.facet(t, i))));
+        let on_surface = (0..4).any(|i| signs[i] == Sign::Zero && input.contains(t, i));
         if on_surface {
             return Err(Error::invalid_argument(format!(
                 "{what} seed {p:?} lies on the surface: move it into a region"
@@ -239,9 +285,10 @@ pub fn assemble(
         }
         labels.push(label_of(t));
     }
+    let input = InputFacets::find(mesh, triangles)?;
     let mut facet_labels = Vec::with_capacity(2 * triangles.len());
-    for &f in triangles {
-        let (front, back) = sides(mesh, f)?;
+    for (k, &f) in triangles.iter().enumerate() {
+        let (front, back) = input.sides(mesh, k, f);
         let side = |t: u32| {
             if mesh.tets.vertices(t).contains(&INFINITE) {
                 0

@@ -25,10 +25,12 @@ pub const NONE: u32 = u32::MAX;
 pub type Key = [u32; 3];
 
 /// The sorted vertices of a facet.
-pub fn key(f: [u32; 3]) -> Key {
-    let mut k = f;
-    k.sort_unstable();
-    k
+pub fn key([a, b, c]: [u32; 3]) -> Key {
+    // A sorting network: three compare-exchanges.
+    let (a, b) = (a.min(b), a.max(b));
+    let (b, c) = (b.min(c), b.max(c));
+    let (a, b) = (a.min(b), a.max(b));
+    [a, b, c]
 }
 
 pub struct TetMesh {
@@ -220,6 +222,9 @@ impl TetMesh {
                     if protected.edges.contains(&e) {
                         edges.insert(e);
                     }
+                }
+                if self.tets.neighbor(t, i) < t {
+                    continue; // each facet once, from the lower of its two tetrahedra
                 }
                 let f = key(self.facet(t, i));
                 if protected.facets.contains(&f) {
