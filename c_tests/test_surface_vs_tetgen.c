@@ -278,16 +278,18 @@ static int check_result(const Case *c, int run, Output *o) {
     snprintf(extra + strlen(extra), sizeof extra - strlen(extra), "; NO FACETS reported");
   }
   if (ours) {
-    /* Vertex dimensions: 2 for surface vertices, 3 for Steiner points, -1 for input vertices no
-     * triangle uses. */
+    /* Vertex dimensions: 2 for surface vertices, 3 for Steiner points and for input vertices no
+     * triangle uses that are vertices of the mesh, -1 for the other input vertices. */
     const int8_t *dimensions = delmesh_mesh_vertex_dimensions(o->mesh);
     unsigned char *on = calloc(c->n ? c->n : 1, 1);
     size_t wrong = 0;
     if (on) {
       for (size_t i = 0; i < 3 * in.m; i++)
         if (in.tris[i] < c->n) on[in.tris[i]] = 1;
+      for (size_t i = 0; i < 4 * r.tet_count; i++)
+        if (r.tets[i] < c->n && !on[r.tets[i]]) on[r.tets[i]] = 3;
       for (size_t i = 0; i < r.vertex_count; i++) {
-        int expected = i >= c->n ? 3 : on[i] ? 2 : -1;
+        int expected = i >= c->n || on[i] == 3 ? 3 : on[i] ? 2 : -1;
         if (!dimensions || dimensions[i] != expected) wrong++;
       }
     }
@@ -747,6 +749,46 @@ static void generated_case(int ok, Surface *s) {
   surface_free(s);
 }
 
+/* Whether vertex v is a corner of one of the `count` tetrahedra `tets`. */
+static int referenced(const uint32_t *tets, size_t count, uint32_t v) {
+  for (size_t i = 0; i < 4 * count; i++)
+    if (tets[i] == v) return 1;
+  return 0;
+}
+
+/* Vertices no triangle uses (TetGen's .node semantics): the generic checks and comparisons of
+ * run_case, then each node inside the cube must be a vertex of both meshes (dimension 3 in
+ * ours) and each node outside of neither (dimension -1). */
+static void isolated_nodes(void) {
+  Surface s;
+  size_t inside = 0;
+  if (!surface_cube_with_nodes(&s, &inside)) {
+    check_case(0, "generating the cube with nodes: out of memory");
+    return;
+  }
+  Case c = case_of_surface(&s, 1);
+  run_case(&c);
+  for (int quality = 0; quality < 2; quality++) {
+    Output ours, theirs;
+    run_delmesh(&c, quality ? 1.414 : 0, &ours);
+    run_tetgen(&c, quality ? "pq1.414YQ" : "pYQ", &theirs);
+    size_t right_ours = 0, right_theirs = 0;
+    const int8_t *dims = ours.ok ? delmesh_mesh_vertex_dimensions(ours.mesh) : NULL;
+    for (uint32_t v = 8; v < s.n; v++) {
+      int in = v < 8 + inside;
+      if (ours.ok && referenced(ours.result.tets, ours.result.tet_count, v) == in && dims[v] == (in ? 3 : -1))
+        right_ours++;
+      if (theirs.ok && referenced(theirs.result.tets, theirs.result.tet_count, v) == in) right_theirs++;
+    }
+    check_case(ours.ok && right_ours == s.n - 8,
+               "%s, %s: %zu of %zu nodes meshed exactly when inside (TetGen %s: %zu)", s.name,
+               quality ? "q1.414" : "default", right_ours, s.n - 8, quality ? "-pq1.414Y" : "-pY", right_theirs);
+    output_free(&ours);
+    output_free(&theirs);
+  }
+  surface_free(&s);
+}
+
 int main(int argc, char **argv) {
   if (argc > 2 || (argc == 2 && strcmp(argv[1], "--small") != 0)) {
     fprintf(stderr, "usage: %s [--small]\n", argv[0]);
@@ -770,6 +812,7 @@ int main(int argc, char **argv) {
   for (int v = 0; v < 4; v++) generated_case(surface_nested_cubes(&s, v), &s);
   generated_case(surface_glued_boxes(&s), &s);
   generated_case(surface_edge_cubes(&s), &s);
+  isolated_nodes();
 
   invalid_case(surface_open_cube);
   invalid_case(surface_intersecting_spheres);

@@ -896,8 +896,11 @@ enum DelmeshStatus delmesh_regular_tetrahedralize(const double *xyz,
  all strictly inside a region (none on the surface). Tetrahedra are positively oriented.
  Facet `k` is input triangle `k` with the same vertex order; its labels (from, to) say which
  region lies on each side (the right-hand normal points from `from` to `to`, 0 = outside).
- Vertex dimension 2 for surface vertices, 3 for Steiner points, -1 for input vertices no
- triangle uses (they are not meshed). Deterministic.
+ Input vertices no triangle uses are meshed as TetGen meshes the nodes of a `.node` file:
+ one strictly inside a kept region becomes a vertex of the mesh; one outside, in a hole, on
+ an input triangle, at another vertex's position or with a non-finite coordinate is left
+ out. Vertex dimension 2 for surface vertices, 3 for Steiner points and meshed unused
+ vertices, -1 for the vertices left out. Deterministic.
 
  Errors: NULL `xyz`, `triangles` or `out` -> DELMESH_ERROR_NULL_ARGUMENT; a negative or
  non-finite option, a ratio in (0, 1.2), keep_convex_hull = 1 (not supported yet) ->

@@ -554,3 +554,42 @@ fn refinement_options_are_checked() {
         assert_eq!(e.kind, ErrorKind::InvalidArgument, "{e}");
     }
 }
+
+#[test]
+fn vertices_no_triangle_uses_are_meshed_inside_and_left_out_elsewhere() {
+    let (mut xyz, tris) = cube();
+    let extra: [[f64; 3]; 7] = [
+        [0.5, 0.5, 0.5],  // 8: inside
+        [0.25, 0.7, 0.3], // 9: inside
+        [2.0, 2.0, 2.0],  // 10: outside
+        [0.5, 0.5, 0.0],  // 11: on the bottom face
+        [0.5, 0.0, 0.0],  // 12: on an edge
+        [0.5, 0.5, 0.5],  // 13: at vertex 8's position
+        [1.0, 1.0, 1.0],  // 14: at cube vertex 7's position
+    ];
+    for p in extra {
+        xyz.extend_from_slice(&p);
+    }
+    for options in [
+        SurfaceOptions::default(),
+        SurfaceOptions {
+            max_radius_edge_ratio: 1.5,
+            ..Default::default()
+        },
+    ] {
+        let mesh = tetrahedralize_surface(&xyz, &tris, &options).unwrap();
+        check(&xyz, &tris, &mesh);
+        let referenced: HashSet<u32> = mesh.tetrahedra.iter().copied().collect();
+        for v in 8..15u32 {
+            let inside = v == 8 || v == 9;
+            assert_eq!(referenced.contains(&v), inside, "vertex {v}");
+            let dimension = mesh.vertex_dimensions[v as usize];
+            assert_eq!(dimension, if inside { 3 } else { -1 }, "vertex {v}");
+        }
+    }
+    // A non-finite vertex no triangle uses is left out, as before.
+    xyz.extend_from_slice(&[f64::NAN, 0.5, 0.5]);
+    let mesh = tetrahedralize_surface(&xyz, &tris, &SurfaceOptions::default()).unwrap();
+    assert_eq!(mesh.vertex_dimensions[15], -1);
+    assert!(!mesh.tetrahedra.contains(&15));
+}

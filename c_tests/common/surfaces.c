@@ -363,6 +363,17 @@ int surface_cube(Surface *s) {
   return finish(&b, s, "cube");
 }
 
+int surface_cube_with_nodes(Surface *s, size_t *inside) {
+  Builder b = {0};
+  add_box(&b, (const double[3]){0, 0, 0}, (const double[3]){1, 1, 1}, (const int[3]){1, 1, 1});
+  /* 27 nodes inside, on a grid off the cube's planes, then 2 outside. */
+  for (int i = 0; i < 27; i++) add_vertex(&b, 0.2 + 0.3 * (i % 3), 0.25 + 0.3 * (i / 3 % 3), 0.3 + 0.2 * (i / 9));
+  add_vertex(&b, 2, 2, 2);
+  add_vertex(&b, -1, 0.5, 0.5);
+  *inside = 27;
+  return finish(&b, s, "cube with 27 nodes inside, 2 outside");
+}
+
 int surface_octahedron(Surface *s) {
   Builder b = {0};
   uint32_t v[6];

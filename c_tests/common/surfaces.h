@@ -37,6 +37,9 @@ typedef struct Surface {
 
 /* The unit cube [0,1]^3, 12 triangles. */
 int surface_cube(Surface *s);
+/* The unit cube and vertices no triangle uses: *inside of them inside (numbered 8, 9, ...),
+ * then 2 outside. */
+int surface_cube_with_nodes(Surface *s, size_t *inside);
 /* The octahedron with vertices ±e_i, 8 triangles. */
 int surface_octahedron(Surface *s);
 /* The icosahedron subdivided `level` times (each triangle into 4), projected on the unit

@@ -1,5 +1,6 @@
 //! A bounding-volume hierarchy of axis-aligned boxes, to find the pairs of items whose boxes
-//! overlap in about `O(n log n)` for items spread over a surface.
+//! overlap in about `O(n log n)` for items spread over a surface, and the items whose boxes
+//! hold a point.
 //!
 //! The tree is built top down: a node's items are split at the median of their box centers
 //! along the longest axis of the centers' extent, ties broken by item number, so the tree
@@ -156,6 +157,29 @@ impl Bvh {
                     pending.extend([(l, b), (r, b)])
                 }
                 (Some(_), Some([l, r])) => pending.extend([(a, l), (a, r)]),
+            }
+        }
+    }
+
+    /// Calls `visit(i)` for every item whose box holds the point `p`, in no set order.
+    pub fn for_each_containing(&self, p: &[f64; 3], mut visit: impl FnMut(usize)) {
+        let point = Aabb { lo: *p, hi: *p };
+        let mut pending = if self.nodes.is_empty() {
+            vec![]
+        } else {
+            vec![0]
+        };
+        while let Some(a) = pending.pop() {
+            let node = &self.nodes[a];
+            if !node.bounds.overlaps(&point) {
+                continue;
+            }
+            match node.children {
+                Some([l, r]) => pending.extend([l, r]),
+                None => self.order[node.start..node.end]
+                    .iter()
+                    .filter(|&&i| self.boxes[i].overlaps(&point))
+                    .for_each(|&i| visit(i)),
             }
         }
     }

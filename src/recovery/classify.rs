@@ -276,6 +276,10 @@ pub fn assemble(
         .collect();
     for t in kept {
         for v in mesh.tets.vertices(t) {
+            if (v as usize) < n_input && dimensions[v as usize] == DIMENSION_UNKNOWN {
+                // An input vertex no triangle uses, inside a kept region.
+                dimensions[v as usize] = 3;
+            }
             if number[v as usize] == u32::MAX {
                 number[v as usize] = (vertices.len() / 3) as u32;
                 vertices.extend_from_slice(mesh.point(v));

@@ -4,8 +4,10 @@
 //! Pipeline:
 //! 1. [`validate`]: the input is checked before anything else (finite coordinates, indices,
 //!    degenerate and duplicate triangles, edges with a single triangle, self-intersections).
-//! 2. The Delaunay triangulation of the surface vertices and of the corners of an enlarged
-//!    bounding box (§5.1), so that no input triangle lies on the convex hull.
+//! 2. The Delaunay triangulation of the surface vertices, of the vertices no triangle uses
+//!    that can be meshed ([`validate::isolated_vertices`], TetGen's `.node` semantics), and
+//!    of the corners of an enlarged bounding box (§5.1), so that no input triangle lies on the
+//!    convex hull.
 //! 3. Missing edges, then missing triangles, are recovered (§5.2).
 //! 4. Points added on the surface are moved off it, then merged away, or removed where their
 //!    star, or their star and a few layers around it, can be filled again without them by
@@ -17,7 +19,9 @@
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
-//! vertices in input order followed by the Steiner points, all strictly inside a region.
+//! vertices in input order followed by the Steiner points, all strictly inside a region; an
+//! input vertex no triangle uses is a vertex of the mesh exactly when it lies inside a kept
+//! region.
 
 mod bvh;
 mod classify;
@@ -91,7 +95,8 @@ pub fn tetrahedralize_surface(
     }
     validate::check_surface(points, tris)?;
     check_options(options)?;
-    let mut mesh = enclosed_delaunay(points, tris)?;
+    let isolated = validate::isolated_vertices(points, tris);
+    let mut mesh = enclosed_delaunay(points, tris, &isolated)?;
     let mut part = Partition::new(tris);
     recover(&mut mesh, &mut part, 16 * tris.len() + 1024)?;
     let normals: Vec<Point> = tris.iter().map(|f| unit_normal(points, *f)).collect();
@@ -173,7 +178,7 @@ fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize) -> Resul
 /// boundary of a region of tetrahedra) with no added point, as this module's recovery finds
 /// them; `None` when it needs a point.
 fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
-    let mut mesh = enclosed_delaunay(points, triangles).ok()?;
+    let mut mesh = enclosed_delaunay(points, triangles, &[]).ok()?;
     let mut part = Partition::new(triangles);
     recover(&mut mesh, &mut part, 0).ok()?;
     let n = points.len() as u32;
@@ -272,12 +277,16 @@ fn check_options(options: &SurfaceOptions) -> Result<()> {
     Ok(())
 }
 
-/// The Delaunay triangulation of the vertices the triangles use and of the corners of a box
-/// three times as large as theirs (George and Borouchaki §5.1).
-fn enclosed_delaunay(points: &[Point], triangles: &[[u32; 3]]) -> Result<TetMesh> {
+/// The Delaunay triangulation of the vertices the triangles use, of the `isolated` vertices,
+/// and of the corners of a box three times as large as theirs (George and Borouchaki §5.1).
+fn enclosed_delaunay(
+    points: &[Point],
+    triangles: &[[u32; 3]],
+    isolated: &[u32],
+) -> Result<TetMesh> {
     let used: Vec<u32> = {
         let set: HashSet<u32> = triangles.iter().flatten().copied().collect();
-        let mut v: Vec<u32> = set.into_iter().collect();
+        let mut v: Vec<u32> = set.into_iter().chain(isolated.iter().copied()).collect();
         v.sort_unstable();
         v
     };

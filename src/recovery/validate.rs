@@ -14,7 +14,8 @@
 //! - a shared edge: they meet along it only, i.e. they are not coplanar with their third
 //!   vertices on the same side of it.
 //!
-//! Vertices not used by any triangle are ignored.
+//! Vertices not used by any triangle are not checked: [`isolated_vertices`] picks those that
+//! can be meshed and leaves the others out.
 
 use super::bvh::{Aabb, Bvh};
 use crate::error::{Error, Result};
@@ -101,6 +102,58 @@ fn check_coincident(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> {
         ))),
         None => Ok(()),
     }
+}
+
+/// The vertices no triangle uses that can be vertices of the mesh (TetGen meshes every node
+/// of a `.node` file): finite and within [`MAX_COORDINATE`], at a position no used vertex or
+/// smaller such vertex has, and off every closed input triangle (exact tests). The others
+/// are left out of the mesh, as junk vertices of a file are. Call after [`check_surface`].
+pub fn isolated_vertices(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Vec<u32> {
+    let mut used = vec![false; points.len()];
+    for &v in triangles.iter().flatten() {
+        used[v as usize] = true;
+    }
+    let finite = |p: &Point| p.iter().all(|x| x.is_finite() && x.abs() <= MAX_COORDINATE);
+    let mut candidates: Vec<u32> = (0..points.len() as u32)
+        .filter(|&v| used[v as usize] || finite(&points[v as usize]))
+        .collect();
+    if candidates.iter().all(|&v| used[v as usize]) {
+        return Vec::new();
+    }
+    // At each position, the used vertex or else the smallest index stays.
+    candidates.sort_unstable_by(|&i, &j| {
+        lex_cmp(&points[i as usize], &points[j as usize])
+            .then(used[j as usize].cmp(&used[i as usize]))
+            .then(i.cmp(&j))
+    });
+    let mut isolated: Vec<u32> = candidates
+        .iter()
+        .enumerate()
+        .filter(|&(k, &v)| {
+            !used[v as usize]
+                && (k == 0
+                    || lex_cmp(&points[candidates[k - 1] as usize], &points[v as usize]).is_ne())
+        })
+        .map(|(_, &v)| v)
+        .collect();
+    isolated.sort_unstable();
+    let boxes = triangles
+        .iter()
+        .map(|t| Aabb::of_points(&t.map(|v| points[v as usize])))
+        .collect();
+    let bvh = Bvh::new(boxes);
+    isolated.retain(|&v| {
+        let p = &points[v as usize];
+        let mut on_surface = false;
+        bvh.for_each_containing(p, |k| {
+            let t = corners(points, &triangles[k]);
+            on_surface = on_surface
+                || orient3d(t[0], t[1], t[2], p) == Sign::Zero
+                    && coplanar_segment_meets_triangle(p, p, &t);
+        });
+        !on_surface
+    });
+    isolated
 }
 
 /// Fails on the first triangle with a repeated vertex or three collinear vertices.
