@@ -183,12 +183,6 @@ static void run_delmesh(const Case *c, double ratio, Output *o) {
                               delmesh_mesh_facets(m), delmesh_mesh_facet_labels(m), delmesh_mesh_facet_count(m)};
 }
 
-/* An option the library rejects as not implemented yet (quality refinement, volume bounds):
- * reported, not checked. */
-static int not_implemented(const Output *o) {
-  return o->status == DELMESH_ERROR_INVALID_ARGUMENT && strstr(o->error, "not supported yet") != NULL;
-}
-
 /* Cases on which delmesh is known to stop with DELMESH_ERROR_LIMIT (the points it adds on
  * coplanar pieces of the surface, rounded, defeat recovery), or to add more Steiner points than
  * TetGen -pY: reported as such, so that the list is the record of what is still short. */
@@ -220,10 +214,6 @@ static int check_result(const Case *c, int run, Output *o) {
   int ours = run >= OURS_DEFAULT, quality = run == TETGEN_PQ || run == OURS_QUALITY;
   const char *what = run_names[run];
   if (!o->ok) {
-    if (ours && not_implemented(o)) {
-      check_note("%s | %s: not implemented yet, not checked: %s", c->name, what, o->error);
-      return 0;
-    }
     if (ours && known_limit(c) && o->status == DELMESH_ERROR_LIMIT) {
       check_note("%s | %s: known limitation (listed in known_limits): %s", c->name, what, o->error);
       return 0;
@@ -789,6 +779,107 @@ static void isolated_nodes(void) {
   surface_free(&s);
 }
 
+/* Sum of the volumes of `count` tetrahedra, and the number of distinct labels. */
+static double total_volume(const double *xyz, const uint32_t *tets, size_t count) {
+  long double sum = 0;
+  for (size_t t = 0; t < count; t++) {
+    const double *p[4];
+    for (int k = 0; k < 4; k++) p[k] = xyz + 3 * (size_t)tets[4 * t + k];
+    double u[3], v[3], w[3];
+    for (int k = 0; k < 3; k++) u[k] = p[1][k] - p[0][k], v[k] = p[2][k] - p[0][k], w[k] = p[3][k] - p[0][k];
+    sum += (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0])) / 6.0;
+  }
+  return (double)sum;
+}
+
+static size_t distinct_labels(const int32_t *labels, size_t count) {
+  size_t distinct = 0;
+  for (size_t t = 0; t < count; t++) {
+    size_t u = 0;
+    while (u < t && labels[u] != labels[t]) u++;
+    distinct += u == t;
+  }
+  return distinct;
+}
+
+/* keep_convex_hull against TetGen -pcY on one triangle surface: both valid, the same total
+ * volume (the hull's, 1e-12 relative), the input triangles our facets, one label more than
+ * without the hull when the surface is not convex; tetrahedra and added points printed. */
+static void convex_hull_case(const char *name, const double *xyz, size_t n, const uint32_t *tris, size_t m) {
+  DelmeshSurfaceOptions options;
+  memset(&options, 0, sizeof options);
+  DelmeshMesh *plain = NULL, *mesh = NULL;
+  DelmeshStatus s0 = delmesh_tetrahedralize_surface(xyz, n, tris, m, &options, &plain);
+  options.keep_convex_hull = 1;
+  double start = now();
+  DelmeshStatus s1 = delmesh_tetrahedralize_surface(xyz, n, tris, m, &options, &mesh);
+  double seconds = now() - start;
+  RefSurfaceMesh ref;
+  RefTiming timing = {0};
+  char error[512] = "";
+  memset(&ref, 0, sizeof ref);
+  int theirs = tetgen_child_run(xyz, n, tris, NULL, m, NULL, 0, NULL, 0, "pcYQ", TETGEN_TIME_LIMIT, &ref, &timing, error,
+                                sizeof error) == 0;
+  if (s1 != DELMESH_OK || s0 != DELMESH_OK || !theirs) {
+    check_case(s1 == DELMESH_OK || (s1 == DELMESH_ERROR_LIMIT && listed(name, known_limits, sizeof known_limits / sizeof known_limits[0])),
+               "%s, keep_convex_hull: delmesh status %d (%s), without the hull %d; TetGen -pcY %s", name, (int)s1,
+               s1 == DELMESH_OK ? "ok" : delmesh_last_error_message(), (int)s0, theirs ? "ok" : error);
+  } else {
+    size_t nv = delmesh_mesh_vertex_count(mesh), nt = delmesh_mesh_tetrahedron_count(mesh);
+    const uint32_t *tets = delmesh_mesh_tetrahedra(mesh);
+    unsigned char *expect = malloc(nv);
+    Validity v;
+    int valid = 0;
+    if (expect) {
+      memset(expect, VERTEX_MAY_BE_UNUSED, nv);
+      valid = metrics_validity(delmesh_mesh_vertices(mesh), nv, tets, nt, expect, NULL, 0, &v);
+      free(expect);
+    }
+    double ours = total_volume(delmesh_mesh_vertices(mesh), tets, nt);
+    double hull = total_volume(ref.xyz, ref.tets, ref.tet_count);
+    int facets = delmesh_mesh_facet_count(mesh) == m && memcmp(delmesh_mesh_facets(mesh), tris, 3 * m * sizeof *tris) == 0;
+    double without = total_volume(delmesh_mesh_vertices(plain), delmesh_mesh_tetrahedra(plain),
+                                  delmesh_mesh_tetrahedron_count(plain));
+    size_t labels = distinct_labels(delmesh_mesh_tetrahedron_labels(mesh), nt);
+    size_t plain_labels = distinct_labels(delmesh_mesh_tetrahedron_labels(plain), delmesh_mesh_tetrahedron_count(plain));
+    int convex = fabs(without - hull) <= 1e-12 * hull;
+    check_case(valid && facets && fabs(ours - hull) <= 1e-12 * hull && labels == plain_labels + (convex ? 0 : 1),
+               "%s, keep_convex_hull: valid, facets = input, volume %.15g vs TetGen -pcY %.15g, %zu labels (%zu without "
+               "the hull); tetrahedra %zu vs %zu, points added %zu vs %zu, %.3f s vs %.3f s",
+               name, ours, hull, labels, plain_labels, nt, ref.tet_count, nv - n, ref.vertex_count - n, seconds,
+               timing.seconds);
+  }
+  delmesh_mesh_free(plain);
+  delmesh_mesh_free(mesh);
+  ref_surface_mesh_free(&ref);
+}
+
+static void convex_hull_cases(void) {
+  Surface s;
+  if (surface_terrain(&s, 20)) {
+    convex_hull_case(s.name, s.xyz, s.n, s.tris, s.m);
+    surface_free(&s);
+  }
+  if (surface_nested_cubes(&s, 0)) {
+    convex_hull_case(s.name, s.xyz, s.n, s.tris, s.m);
+    surface_free(&s);
+  }
+  const char *corpus = getenv("DELMESH_CORPUS");
+  static const char *const files[] = {"surfaces/knot.off", "surfaces/eight.off", "surfaces/elephant.off",
+                                      "surfaces/handle.off"};
+  for (size_t i = 0; corpus && corpus[0] && i < sizeof files / sizeof files[0]; i++) {
+    char path[4096], error[512];
+    snprintf(path, sizeof path, "%s/%s", corpus, files[i]);
+    SurfaceFile f;
+    if (!surface_file_read(path, &f, error, sizeof error)) {
+      check_note("%s: not read (%s), skipped", files[i], error);
+      continue;
+    }
+    if (f.all_triangles) convex_hull_case(files[i], f.xyz, f.n, f.corners, f.polygon_count);
+    surface_file_free(&f);
+  }
+}
+
 int main(int argc, char **argv) {
   if (argc > 2 || (argc == 2 && strcmp(argv[1], "--small") != 0)) {
     fprintf(stderr, "usage: %s [--small]\n", argv[0]);
@@ -813,6 +904,7 @@ int main(int argc, char **argv) {
   generated_case(surface_glued_boxes(&s), &s);
   generated_case(surface_edge_cubes(&s), &s);
   isolated_nodes();
+  convex_hull_cases();
 
   invalid_case(surface_open_cube);
   invalid_case(surface_intersecting_spheres);

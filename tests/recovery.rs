@@ -593,3 +593,75 @@ fn vertices_no_triangle_uses_are_meshed_inside_and_left_out_elsewhere() {
     assert_eq!(mesh.vertex_dimensions[15], -1);
     assert!(!mesh.tetrahedra.contains(&15));
 }
+
+/// An L-shaped prism of height 1: the L of the unit squares at (0, 0), (1, 0) and (0, 1), with
+/// area 3; its convex hull adds the triangle (2, 1), (1, 2), (1, 1): volume 3.5.
+fn l_prism() -> (Vec<f64>, Vec<u32>) {
+    let outline = [
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [2.0, 1.0],
+        [1.0, 1.0],
+        [1.0, 2.0],
+        [0.0, 2.0],
+    ];
+    let mut xyz = Vec::new();
+    for z in [0.0, 1.0] {
+        for p in outline {
+            xyz.extend_from_slice(&[p[0], p[1], z]);
+        }
+    }
+    let mut tris = Vec::new();
+    for [a, b, c] in [[0, 1, 2], [0, 2, 3], [0, 3, 5], [3, 4, 5]] {
+        tris.extend_from_slice(&[a, c, b, a + 6, b + 6, c + 6]);
+    }
+    for i in 0..6 {
+        let j = (i + 1) % 6;
+        tris.extend_from_slice(&[i, j, j + 6, i, j + 6, i + 6]);
+    }
+    (xyz, tris)
+}
+
+#[test]
+fn keeping_the_convex_hull_adds_a_region_between_the_surface_and_the_hull() {
+    let (xyz, tris) = l_prism();
+    let plain = tetrahedralize_surface(&xyz, &tris, &SurfaceOptions::default()).unwrap();
+    check(&xyz, &tris, &plain);
+    assert!(plain.tetrahedron_labels.iter().all(|&l| l == 1));
+    let options = SurfaceOptions {
+        keep_convex_hull: true,
+        ..Default::default()
+    };
+    for ratio in [0.0, 1.5] {
+        let options = SurfaceOptions {
+            max_radius_edge_ratio: ratio,
+            ..options.clone()
+        };
+        let mesh = tetrahedralize_surface(&xyz, &tris, &options).unwrap();
+        mesh.validate().unwrap();
+        assert_eq!(&mesh.vertices[..xyz.len()], &xyz[..]);
+        assert_eq!(mesh.facets, tris);
+        let mut volume = HashMap::new();
+        for (t, &label) in mesh
+            .tetrahedra
+            .chunks_exact(4)
+            .zip(&mesh.tetrahedron_labels)
+        {
+            *volume.entry(label).or_insert(0.0) +=
+                volume6([0, 1, 2, 3].map(|k| mesh.vertex(t[k]))) / 6.0;
+        }
+        assert_eq!(volume.len(), 2, "{volume:?}");
+        assert!((volume[&1] - 3.0).abs() < 1e-12, "{volume:?}");
+        assert!((volume[&2] - 0.5).abs() < 1e-12, "{volume:?}");
+        // The notch's four triangles separate the solid from the hull's region.
+        for (f, l) in tris.chunks_exact(3).zip(mesh.facet_labels.chunks_exact(2)) {
+            let notch = f.iter().all(|&v| {
+                let p = point(&xyz, v);
+                (p[0] - 1.0) * (p[1] - 1.0) == 0.0 && p[0] >= 1.0 && p[1] >= 1.0
+            });
+            let mut l = [l[0], l[1]];
+            l.sort_unstable();
+            assert_eq!(l, if notch { [1, 2] } else { [0, 1] }, "facet {f:?}");
+        }
+    }
+}

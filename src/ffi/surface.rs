@@ -18,9 +18,11 @@ pub struct DelmeshSurfaceOptions {
     /// 0 = none; else an upper bound on every tetrahedron's volume (TetGen `-a`), met by
     /// circumcenters, or centroids where those are declined.
     pub max_volume: f64,
-    /// 1 = keep the tetrahedra between the surface and its convex hull too (they would get
-    /// their own label); 0 = drop them. 1 is not supported yet:
-    /// DELMESH_ERROR_INVALID_ARGUMENT.
+    /// 1 = keep the tetrahedra between the surface and the convex hull of the meshed vertices
+    /// too (TetGen `-c`): the hull's triangles are recovered like input triangles, and the
+    /// regions between the surface and the hull get labels after the surface's regions.
+    /// Points may be left on the hull's triangles (vertex dimension 2), never on the input
+    /// surface. 0 = drop them.
     pub keep_convex_hull: i32,
 }
 
@@ -35,17 +37,19 @@ pub struct DelmeshSurfaceOptions {
 /// smallest input triangle index.
 ///
 /// Output: vertex `i < n_vertices` is input vertex `i` (bit for bit); Steiner points follow,
-/// all strictly inside a region (none on the surface). Tetrahedra are positively oriented.
+/// all strictly inside a region (none on the surface; with keep_convex_hull, some may lie on
+/// the hull's boundary, dimension 2). Tetrahedra are positively oriented.
 /// Facet `k` is input triangle `k` with the same vertex order; its labels (from, to) say which
 /// region lies on each side (the right-hand normal points from `from` to `to`, 0 = outside).
 /// Input vertices no triangle uses are meshed as TetGen meshes the nodes of a `.node` file:
 /// one strictly inside a kept region becomes a vertex of the mesh; one outside, in a hole, on
 /// an input triangle, at another vertex's position or with a non-finite coordinate is left
-/// out. Vertex dimension 2 for surface vertices, 3 for Steiner points and meshed unused
+/// out. Vertex dimension 2 for surface vertices and Steiner points on a kept hull's boundary,
+/// 3 for the other Steiner points and meshed unused
 /// vertices, -1 for the vertices left out. Deterministic.
 ///
 /// Errors: NULL `xyz`, `triangles` or `out` -> DELMESH_ERROR_NULL_ARGUMENT; a negative or
-/// non-finite option, a ratio in (0, 1.2), keep_convex_hull = 1 (not supported yet) ->
+/// non-finite option, a ratio in (0, 1.2), keep_convex_hull other than 0 or 1 ->
 /// DELMESH_ERROR_INVALID_ARGUMENT; a non-finite
 /// coordinate, an index out of range, a degenerate (zero-area) or repeated triangle, an edge
 /// with a single triangle, two input vertices at one position, or two triangles that

@@ -4,7 +4,8 @@
 //! Regions are the connected components of tetrahedra across facets that are not input
 //! triangles. The component of the infinite tetrahedra (around the enclosing box) is the
 //! outside. The other components are numbered by their smallest bounding input triangle
-//! (the one on its front side first), then seeds relabel or remove them.
+//! (the one on its front side first); those between the surface and a kept convex hull get
+//! one label after them. Then seeds relabel or remove regions.
 //!
 //! Output invariants: vertices are the input vertices in input order, then the Steiner points
 //! used by kept tetrahedra; facet `k` is input triangle `k`, labels (from, to) with the
@@ -47,15 +48,18 @@ impl Regions {
     }
 }
 
-/// The regions of the recovered mesh, labelled and bounded by `options`.
+/// The regions of the recovered mesh, labelled and bounded by `options`: `triangles` are the
+/// input triangles, then from `first_hull` on the convex hull's (`keep_convex_hull`): the
+/// tetrahedra between the surface and the hull get one label, after the others.
 pub fn regions(
     mesh: &mut TetMesh,
     triangles: &[[u32; 3]],
+    first_hull: usize,
     options: &SurfaceOptions,
 ) -> Result<Regions> {
     let input = InputFacets::find(mesh, triangles)?;
     let component = components(mesh, &input);
-    label(mesh, &input, component, triangles, options)
+    label(mesh, &input, component, (triangles, first_hull), options)
 }
 
 /// Where the input triangles are in the mesh: which facets of each tetrahedron slot are input
@@ -160,7 +164,7 @@ fn label(
     mesh: &mut TetMesh,
     input: &InputFacets,
     component: Vec<u32>,
-    triangles: &[[u32; 3]],
+    (triangles, first_hull): (&[[u32; 3]], usize),
     options: &SurfaceOptions,
 ) -> Result<Regions> {
     let count = component
@@ -177,14 +181,28 @@ fn label(
         .max()
         .unwrap_or(0)
         .max(0);
+    // The tetrahedra between the surface and the hull (next to a hull triangle, past the
+    // `first_hull` input ones) get one label, after the others': those keep their labels.
+    let mut between = vec![false; count as usize];
+    for (k, &f) in triangles.iter().enumerate().skip(first_hull) {
+        let (front, back) = input.sides(mesh, k, f);
+        for t in [front, back] {
+            between[component[t as usize] as usize] = true;
+        }
+    }
     for (k, &f) in triangles.iter().enumerate() {
         let (front, back) = input.sides(mesh, k, f);
         for t in [front, back] {
             let c = component[t as usize];
-            if c != OUTSIDE && label[c as usize] == 0 {
+            if c != OUTSIDE && label[c as usize] == 0 && !between[c as usize] {
                 label[c as usize] = next;
                 next += 1;
             }
+        }
+    }
+    for (c, &b) in between.iter().enumerate() {
+        if b && c != OUTSIDE as usize {
+            label[c] = next;
         }
     }
     for seed in &options.regions {
@@ -249,11 +267,13 @@ fn seed_component(
 }
 
 /// The output arrays: the mesh of the kept regions, with the input triangles as facets.
+/// Steiner points have dimension 3, or 2 when `on_hull` (left on a kept convex hull).
 pub fn assemble(
     mesh: &mut TetMesh,
     n_input: usize,
     triangles: &[[u32; 3]],
     regions: &Regions,
+    on_hull: &dyn Fn(u32) -> bool,
 ) -> Result<Mesh> {
     let label_of = |t: u32| regions.label[regions.component[t as usize] as usize];
     let mut number = vec![u32::MAX; mesh.points.len()];
@@ -283,7 +303,7 @@ pub fn assemble(
             if number[v as usize] == u32::MAX {
                 number[v as usize] = (vertices.len() / 3) as u32;
                 vertices.extend_from_slice(mesh.point(v));
-                dimensions.push(3);
+                dimensions.push(if on_hull(v) { 2 } else { 3 });
             }
             tetrahedra.push(number[v as usize]);
         }

@@ -8,7 +8,8 @@
 //!    that can be meshed ([`validate::isolated_vertices`], TetGen's `.node` semantics), and
 //!    of the corners of an enlarged bounding box (§5.1), so that no input triangle lies on the
 //!    convex hull.
-//! 3. Missing edges, then missing triangles, are recovered (§5.2).
+//! 3. Missing edges, then missing triangles, are recovered (§5.2); with `keep_convex_hull`,
+//!    the convex hull's triangles ([`hull`]) too, and points added on those alone stay there.
 //! 4. Points added on the surface are moved off it, then merged away, or removed where their
 //!    star, or their star and a few layers around it, can be filled again without them by
 //!    this same recovery with no point allowed (§5.3, [`suppress`]).
@@ -28,6 +29,7 @@ mod classify;
 pub mod edges;
 pub mod faces;
 pub mod flips;
+mod hull;
 pub mod partition;
 mod refine;
 pub mod steiner;
@@ -96,14 +98,30 @@ pub fn tetrahedralize_surface(
     validate::check_surface(points, tris)?;
     check_options(options)?;
     let isolated = validate::isolated_vertices(points, tris);
-    let mut mesh = enclosed_delaunay(points, tris, &isolated)?;
-    let mut part = Partition::new(tris);
-    recover(&mut mesh, &mut part, 16 * tris.len() + 1024)?;
-    let normals: Vec<Point> = tris.iter().map(|f| unit_normal(points, *f)).collect();
-    suppress::suppress_all(&mut mesh, &mut part, &normals)?;
+    // With the convex hull kept, its triangles are recovered and bound regions as the input's.
+    let mut bounding = tris.to_vec();
+    if options.keep_convex_hull {
+        let mut vertices: Vec<u32> = tris.iter().flatten().chain(&isolated).copied().collect();
+        vertices.sort_unstable();
+        vertices.dedup();
+        bounding.extend(hull::triangles(points, tris, &vertices)?);
+    }
+    let mut mesh = enclosed_delaunay(points, &bounding, &isolated)?;
+    let mut part = Partition::new(&bounding);
+    recover(&mut mesh, &mut part, 16 * bounding.len() + 1024)?;
+    let normals: Vec<Point> = bounding.iter().map(|f| unit_normal(points, *f)).collect();
+    suppress::suppress_all(&mut mesh, &mut part, &normals, tris.len())?;
     suppress::merge_interior(&mut mesh, &part.protected, points.len() as u32 + 8)?;
-    suppress::relocate_interior(&mut mesh, points.len() as u32 + 8);
-    let mut regions = classify::regions(&mut mesh, tris, options)?;
+    suppress::relocate_interior(&mut mesh, &part, points.len() as u32 + 8);
+    // The hull's triangles are in pieces where points stayed on them.
+    let mut bounding = tris.to_vec();
+    bounding.extend(
+        part.all_subfaces()
+            .into_iter()
+            .filter(|&(f, _)| f >= tris.len())
+            .map(|(_, t)| t),
+    );
+    let mut regions = classify::regions(&mut mesh, &bounding, tris.len(), options)?;
     if options.max_radius_edge_ratio > 0.0 || regions.max_volume.iter().any(|&v| v > 0.0) {
         refine::refine(
             &mut mesh,
@@ -113,7 +131,9 @@ pub fn tetrahedralize_surface(
             points.len() as u32,
         )?;
     }
-    classify::assemble(&mut mesh, points.len(), tris, &regions)
+    classify::assemble(&mut mesh, points.len(), tris, &regions, &|v| {
+        part.host.contains_key(&v)
+    })
 }
 
 /// Recovers every subface (§5.2): sub-edges first, then subfaces, by flips; where flips
@@ -248,11 +268,6 @@ fn until_stable<T>(
 
 /// Checks the options: bounds finite and meaningful, and nothing this version cannot honour.
 fn check_options(options: &SurfaceOptions) -> Result<()> {
-    if options.keep_convex_hull {
-        return Err(Error::invalid_argument(
-            "keep_convex_hull is not supported yet",
-        ));
-    }
     let ratio = options.max_radius_edge_ratio;
     if !(ratio == 0.0 || ratio >= 1.2 && ratio.is_finite()) {
         return Err(Error::invalid_argument(format!(

@@ -39,11 +39,21 @@ struct Patch {
 }
 
 /// Moves every point of the partition off the surface: points inside triangles first, then
-/// points on edges. `normals[f]` is the unit normal of input triangle `f`.
-pub fn suppress_all(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point]) -> Result<()> {
+/// points on edges. `normals[f]` is the unit normal of partition triangle `f`. The triangles
+/// from `first_hull` on are the convex hull's (`keep_convex_hull`): a point on those alone
+/// stays, a vertex of the mesh's boundary.
+pub fn suppress_all(
+    mesh: &mut TetMesh,
+    part: &mut Partition,
+    normals: &[Point],
+    first_hull: usize,
+) -> Result<()> {
     let mut inside: Vec<u32> = Vec::new();
     let mut on_edges: Vec<u32> = Vec::new();
     for (&v, host) in &part.host {
+        if part.faces_of(v).iter().all(|&f| f >= first_hull) {
+            continue;
+        }
         match host {
             Host::Face(_) => inside.push(v),
             Host::Edge(_) => on_edges.push(v),
@@ -309,16 +319,17 @@ fn left(mesh: &TetMesh, first: u32) -> Vec<u32> {
         .collect()
 }
 
-/// Moves every point added off the surface (ids `first..`) to where its star's worst
+/// Moves every point added off the surface (ids `first..`, none still on the partition: a
+/// point on the convex hull's triangles stays there) to where its star's worst
 /// radius-edge ratio is smallest (George and Borouchaki's relocation; the halving that took
 /// it off the surface leaves it needlessly close): the candidates lie on the segment from the
 /// point to the centroid of its link, and a move is kept only when every tetrahedron of the
 /// star stays positive (exact) and the worst ratio improves. The mesh's topology does not
 /// change.
-pub fn relocate_interior(mesh: &mut TetMesh, first: u32) {
+pub fn relocate_interior(mesh: &mut TetMesh, part: &Partition, first: u32) {
     for _ in 0..RELOCATION_PASSES {
         for s in first..mesh.points.len() as u32 {
-            if mesh.in_mesh(s) {
+            if mesh.in_mesh(s) && !part.host.contains_key(&s) {
                 relocate(mesh, s);
             }
         }

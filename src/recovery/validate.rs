@@ -421,7 +421,7 @@ fn overlap_across_edge([u, w]: [&Point; 2], a: &Point, p: &Point) -> bool {
 
 /// A coordinate plane onto which a plane projects one to one: the two kept axes.
 #[derive(Clone, Copy, Debug)]
-struct Projection {
+pub(super) struct Projection {
     axes: [usize; 2],
 }
 
@@ -436,7 +436,7 @@ impl Projection {
     /// A projection onto which the triangle `c` (proper) projects to a proper triangle,
     /// preferring to drop the axis along which its (floating-point) normal is largest; the
     /// choice is checked exactly.
-    fn of(c: &[&Point; 3]) -> Projection {
+    pub(super) fn of(c: &[&Point; 3]) -> Projection {
         let ab = [0, 1, 2].map(|k| c[1][k] - c[0][k]);
         let ac = [0, 1, 2].map(|k| c[2][k] - c[0][k]);
         let normal = [0, 1, 2].map(|t| {
@@ -453,7 +453,7 @@ impl Projection {
     }
 
     /// The exact orientation of the projections of `a, b, c`.
-    fn orient(&self, a: &Point, b: &Point, c: &Point) -> Sign {
+    pub(super) fn orient(&self, a: &Point, b: &Point, c: &Point) -> Sign {
         let [u, v] = self.axes;
         orient2d(&[a[u], a[v]], &[b[u], b[v]], &[c[u], c[v]])
     }
