@@ -81,6 +81,11 @@ impl Cloud {
         }
     }
 
+    /// The box the grid covers.
+    pub fn bounds(&self) -> ([f64; 2], [f64; 2]) {
+        (self.lo, self.hi)
+    }
+
     /// The points, the grid dropped.
     pub fn into_points(self) -> Vec<[f64; 2]> {
         self.points

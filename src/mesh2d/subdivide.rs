@@ -16,7 +16,12 @@
 //!   point nearest to the edge's line, most on long nearly parallel edges (a zigzag: 24
 //!   instead of 52).
 //! - Non-admissible edges are processed by decreasing number of points in their small disk
-//!   (§3.3's heuristic); the small-disk queries use the bucket grid of [`Cloud`].
+//!   (§3.3's heuristic); the small-disk queries use the bucket grid of [`Cloud`]. A point
+//!   added can only spoil the edges whose closed small disk holds it (or, for an edge with
+//!   points on its small circle, a circumdisk the classification looks at): the first are found
+//!   in a bucket grid of the edges' disks ([`DiskGrid`]) and checked again at once, and a full
+//!   pass over all edges after the queue empties catches the rest (one or two passes instead
+//!   of one per wave of projections: a random star polygon of 10^4 edges, 22.2 s -> 5.2 s).
 //!
 //! The distance `d` of `nettoyage`, and which node edges it cuts. The paper cuts every node
 //! edge at `d = d*/2`, `d*` the distance from `P*` to the nearest other point in the small
@@ -95,6 +100,10 @@ pub struct SubdivisionReport {
 pub struct Subdivision {
     pub cloud: Cloud,
     edges: Vec<Edge>,
+    /// The live edges by the boxes of their small disks.
+    disks: DiskGrid,
+    /// Live edges whose closed small disk received a point since they were last checked.
+    touched: Vec<u32>,
     /// Edges at each point (ids into `edges`, live or not: filtered on use).
     incident: Vec<Vec<u32>>,
     pub report: SubdivisionReport,
@@ -108,7 +117,7 @@ impl Subdivision {
     /// added.
     pub fn new(cloud: Cloud, segments: &[[u32; 2]], limit: usize, algorithm: Algorithm) -> Self {
         let mut incident = vec![Vec::new(); cloud.points.len()];
-        let edges = segments
+        let edges: Vec<Edge> = segments
             .iter()
             .enumerate()
             .map(|(k, s)| {
@@ -122,9 +131,19 @@ impl Subdivision {
                 }
             })
             .collect();
+        let mut disks = DiskGrid::new(cloud.bounds(), edges.len());
+        for (k, e) in edges.iter().enumerate() {
+            disks.insert(
+                k as u32,
+                &cloud.points[e.a as usize],
+                &cloud.points[e.b as usize],
+            );
+        }
         Subdivision {
             cloud,
             edges,
+            disks,
+            touched: Vec::new(),
             incident,
             report: SubdivisionReport::default(),
             limit,
@@ -147,7 +166,14 @@ impl Subdivision {
                 let count = self.disk_points(e).len();
                 heap.push((count, std::cmp::Reverse(e)));
             }
+            self.touched.clear();
+            // Whether an edge is in the heap: a touched one there is checked when it comes out.
+            let mut queued = vec![false; self.edges.len()];
+            for &(_, std::cmp::Reverse(e)) in heap.iter() {
+                queued[e as usize] = true;
+            }
             while let Some((_, std::cmp::Reverse(e))) = heap.pop() {
+                queued[e as usize] = false;
                 if !self.edges[e as usize].alive {
                     continue;
                 }
@@ -156,10 +182,20 @@ impl Subdivision {
                     continue;
                 }
                 let [e1, e2] = self.project(e, &disk)?;
-                for f in [e1, e2] {
+                // The new halves, and the edges whose small disk the new point fell in.
+                let mut check = std::mem::take(&mut self.touched);
+                check.extend([e1, e2]);
+                check.sort_unstable();
+                check.dedup();
+                queued.resize(self.edges.len(), false);
+                for f in check {
+                    if !self.edges[f as usize].alive || queued[f as usize] {
+                        continue;
+                    }
                     let disk = self.disk_points(f);
                     if !self.admissible_with(f, &disk) {
                         heap.push((disk.len(), std::cmp::Reverse(f)));
+                        queued[f as usize] = true;
                     }
                 }
             }
@@ -447,6 +483,22 @@ impl Subdivision {
         self.split(e, mid)
     }
 
+    /// Notes the live edges whose closed small disk holds the new point `p` (exact test):
+    /// they are checked again ([`Subdivision::run`]).
+    fn note_point(&mut self, p: u32) {
+        let q = self.point(p);
+        for k in self.disks.candidates(&q) {
+            let e = self.edges[k as usize];
+            if e.alive
+                && e.a != p
+                && e.b != p
+                && dot_sign(&self.point(e.a), &self.point(e.b), &q) != Sign::Positive
+            {
+                self.touched.push(k);
+            }
+        }
+    }
+
     /// Splits edge `e` at the new point `m`; returns the two new edges.
     fn split(&mut self, e: u32, m: [f64; 2]) -> Result<[u32; 2]> {
         if self.report.projections + self.report.cleanings > self.limit {
@@ -485,6 +537,22 @@ impl Subdivision {
                 *slot = new;
             }
         }
+        self.note_point(mid);
+        self.disks.insert(first, &a, &m);
+        self.disks.insert(first + 1, &m, &b);
+        if self.disks.crowded() {
+            let live: Vec<(u32, [f64; 2], [f64; 2])> = (0..self.edges.len() as u32)
+                .filter(|&k| self.edges[k as usize].alive)
+                .map(|k| {
+                    let e = self.edges[k as usize];
+                    (k, self.point(e.a), self.point(e.b))
+                })
+                .collect();
+            self.disks = DiskGrid::new(self.cloud.bounds(), live.len());
+            for (k, a, b) in live {
+                self.disks.insert(k, &a, &b);
+            }
+        }
         Ok([first, first + 1])
     }
 }
@@ -500,4 +568,71 @@ fn point_segment_distance(p: &[f64; 2], a: &[f64; 2], b: &[f64; 2]) -> f64 {
         0.0
     };
     (vx - t * ux).hypot(vy - t * uy)
+}
+
+/// A bucket grid of edges by the boxes of their small disks: the candidates whose disk may
+/// hold a point are the edges filed in its cell. Boxes and points are clamped to the grid, as
+/// in [`Cloud`], so a point of a disk is in a cell its edge is filed in. Edges are never
+/// taken out; callers skip the dead ones, and the grid is laid again when it is crowded.
+struct DiskGrid {
+    lo: [f64; 2],
+    scale: f64,
+    n: usize,
+    cells: Vec<Vec<u32>>,
+    filed: usize,
+}
+
+impl DiskGrid {
+    /// About `edges` cells over the box `(lo, hi)`.
+    fn new((lo, hi): ([f64; 2], [f64; 2]), edges: usize) -> Self {
+        let side = (hi[0] - lo[0]).max(hi[1] - lo[1]);
+        let n = ((edges as f64).sqrt().ceil() as usize).clamp(1, 1 << 10);
+        let scale = if side > 0.0 && side.is_finite() {
+            n as f64 / side
+        } else {
+            0.0
+        };
+        DiskGrid {
+            lo,
+            scale,
+            n,
+            cells: vec![Vec::new(); n * n],
+            filed: 0,
+        }
+    }
+
+    /// The clamped cell coordinate of `x` along axis `k`.
+    fn axis(&self, x: f64, k: usize) -> usize {
+        let c = (x - self.lo[k]) * self.scale;
+        if c >= 0.0 {
+            (c as usize).min(self.n - 1)
+        } else {
+            0
+        }
+    }
+
+    /// Files edge `k` from `a` to `b` in the cells its small disk's box meets (the box widened
+    /// by a relative margin for the rounding of its center and radius).
+    fn insert(&mut self, k: u32, a: &[f64; 2], b: &[f64; 2]) {
+        let center = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+        let r = 0.5 * (b[0] - a[0]).hypot(b[1] - a[1]) * (1.0 + 1e-9) + f64::MIN_POSITIVE;
+        let (x0, x1) = (self.axis(center[0] - r, 0), self.axis(center[0] + r, 0));
+        let (y0, y1) = (self.axis(center[1] - r, 1), self.axis(center[1] + r, 1));
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                self.cells[y * self.n + x].push(k);
+            }
+        }
+        self.filed += 1;
+    }
+
+    /// The edges filed in the cell of `p`.
+    fn candidates(&self, p: &[f64; 2]) -> Vec<u32> {
+        self.cells[self.axis(p[1], 1) * self.n + self.axis(p[0], 0)].clone()
+    }
+
+    /// Whether the edges filed outnumber the cells four times.
+    fn crowded(&self) -> bool {
+        self.filed > 4 * self.cells.len() && self.n < 1 << 10
+    }
 }
