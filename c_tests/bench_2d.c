@@ -12,7 +12,11 @@
  *             10^4 edges (r = 1 + 0.3 sin(12 t)): delmesh_triangulate_2d QUALITY vs CGAL's
  *             refine_Delaunay_mesh_2 (Delaunay_mesh_size_criteria_2, shape bound sin^2 25 deg);
  *   holes     the same on the unit square pierced by a 50 x 50 grid of square holes (10^4 + 4
- *             edges, 2500 hole seeds).
+ *             edges, 2500 hole seeds);
+ *   conform   conforming Delaunay triangulation of a random star polygon of 10^4 edges (sorted
+ *             random angles, radii uniform in [0.3, 1]: many acute angles) and 10^4 random
+ *             points in [-0.2, 0.2]^2: delmesh_triangulate_2d CONFORMING (Pebay) vs CGAL's
+ *             make_conforming_Delaunay_2; the count column gives vertices, not triangles.
  *
  * Each run is a separate process (fork + exec of this program), so its peak resident memory is
  * its own. The time is measured inside the child around the call, input generation excluded,
@@ -40,8 +44,8 @@
 
 enum { DELMESH, CGAL, TOOLS };
 static const char *const tool_names[TOOLS] = {"delmesh", "cgal"};
-enum { CASE_DELAUNAY, CASE_STAR, CASE_HOLES, CASES };
-static const char *const case_names[CASES] = {"delaunay", "star", "holes"};
+enum { CASE_DELAUNAY, CASE_STAR, CASE_HOLES, CASE_CONFORM, CASES };
+static const char *const case_names[CASES] = {"delaunay", "star", "holes", "conform"};
 
 static int lookup(const char *name, const char *const *names, int count) {
   for (int i = 0; i < count; i++)
@@ -72,6 +76,11 @@ static size_t delaunay_points(void) {
   return n < 3 ? 3 : n;
 }
 
+static int compare_doubles(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
 /* The inputs of `which` (the same for both tools); 0 when out of memory. */
 static int make_input(int which, Pslg *p) {
   memset(p, 0, sizeof *p);
@@ -98,6 +107,28 @@ static int make_input(int which, Pslg *p) {
       p->segments[2 * i + 1] = (uint32_t)((i + 1) % n);
     }
     p->n_points = p->n_segments = n;
+    return 1;
+  }
+  if (which == CASE_CONFORM) {
+    size_t n = STAR_EDGES;
+    p->xy = malloc(4 * n * sizeof *p->xy);
+    p->segments = malloc(2 * n * sizeof *p->segments);
+    double *angle = malloc(n * sizeof *angle);
+    if (!p->xy || !p->segments || !angle) return free(angle), 0;
+    Prng g = prng_new(0xC0F0u);
+    for (size_t i = 0; i < n; i++) angle[i] = 2.0 * 3.14159265358979323846 * prng_uniform(&g);
+    qsort(angle, n, sizeof *angle, compare_doubles);
+    for (size_t i = 0; i < n; i++) {
+      double r = 0.3 + 0.7 * prng_uniform(&g);
+      p->xy[2 * i] = r * cos(angle[i]);
+      p->xy[2 * i + 1] = r * sin(angle[i]);
+      p->segments[2 * i] = (uint32_t)i;
+      p->segments[2 * i + 1] = (uint32_t)((i + 1) % n);
+    }
+    for (size_t i = 2 * n; i < 4 * n; i++) p->xy[i] = 0.4 * prng_uniform(&g) - 0.2;
+    free(angle);
+    p->n_points = 2 * n;
+    p->n_segments = n;
     return 1;
   }
   /* holes: the unit square, and in each of the HOLE_GRID^2 cells a square hole of half its side. */
@@ -164,8 +195,10 @@ static int run(int tool, int which, const Pslg *p, Outcome *out) {
   if (tool == DELMESH) {
     DelmeshOptions2d options;
     memset(&options, 0, sizeof options);
-    options.mode = which == CASE_DELAUNAY ? DELMESH_MODE2D_DELAUNAY : DELMESH_MODE2D_QUALITY;
-    if (which != CASE_DELAUNAY) options.min_angle_degrees = MIN_ANGLE;
+    options.mode = which == CASE_DELAUNAY  ? DELMESH_MODE2D_DELAUNAY
+                   : which == CASE_CONFORM ? DELMESH_MODE2D_CONFORMING
+                                           : DELMESH_MODE2D_QUALITY;
+    if (which == CASE_STAR || which == CASE_HOLES) options.min_angle_degrees = MIN_ANGLE;
     options.holes = p->holes;
     options.n_holes = p->n_holes;
     DelmeshMesh *mesh = NULL;
@@ -173,14 +206,16 @@ static int run(int tool, int which, const Pslg *p, Outcome *out) {
     DelmeshStatus s = delmesh_triangulate_2d(p->xy, p->n_points, p->segments, p->n_segments,
                                              &options, &mesh);
     const uint32_t *tri = s == DELMESH_OK ? delmesh_mesh_triangles(mesh) : NULL;
-    out->triangles = s == DELMESH_OK ? delmesh_mesh_triangle_count(mesh) : 0;
+    out->triangles = s != DELMESH_OK      ? 0
+                     : which == CASE_CONFORM ? delmesh_mesh_vertex_count(mesh)
+                                             : delmesh_mesh_triangle_count(mesh);
     out->seconds = bench_seconds_now() - t0;
     if (s != DELMESH_OK || (!tri && out->triangles)) {
       fprintf(stderr, "bench_2d: delmesh failed (status %d): %s\n", (int)s,
               delmesh_last_error_message());
       return 0;
     }
-    if (which != CASE_DELAUNAY) {
+    if (which == CASE_STAR || which == CASE_HOLES) {
       const double *v = delmesh_mesh_vertices(mesh); /* x y z per vertex */
       for (size_t t = 0; t < out->triangles; t++) {
         double a = smallest_angle(&v[3 * tri[3 * t]], &v[3 * tri[3 * t + 1]], &v[3 * tri[3 * t + 2]]);
@@ -199,6 +234,13 @@ static int run(int tool, int which, const Pslg *p, Outcome *out) {
       return 0;
     }
     free(tri);
+  } else if (which == CASE_CONFORM) {
+    RefConforming2d m;
+    if (ref_cgal_conforming_2d(p->xy, p->n_points, p->segments, p->n_segments, &m, &timing) != 0) {
+      fprintf(stderr, "bench_2d: CGAL failed: %s\n", ref_last_error());
+      return 0;
+    }
+    out->triangles = m.vertex_count;
   } else {
     RefMesh2d m;
     if (ref_cgal_mesh_2d(p->xy, p->n_points, p->segments, p->n_segments, p->holes, p->n_holes,
@@ -283,7 +325,7 @@ int main(int argc, char **argv) {
       row->seconds[tool] = bench_median(times[tool], REPETITIONS);
       row->peak_mb[tool] = bench_median(mems[tool], REPETITIONS);
     }
-    if (c != CASE_DELAUNAY) {
+    if (c == CASE_STAR || c == CASE_HOLES) {
       Pslg p;
       if (!make_input(c, &p)) {
         row->ok = 0;
@@ -313,7 +355,7 @@ int main(int argc, char **argv) {
            r->seconds[DELMESH], r->seconds[CGAL], r->seconds[CGAL] / r->seconds[DELMESH],
            r->peak_mb[DELMESH], r->peak_mb[CGAL], r->peak_mb[CGAL] / r->peak_mb[DELMESH],
            r->triangles[DELMESH], r->triangles[CGAL]);
-    if (c == CASE_DELAUNAY)
+    if (c == CASE_DELAUNAY || c == CASE_CONFORM)
       printf(" -\n");
     else
       printf(" %.1f deg, %zu / %.1f deg, %zu\n", r->quality[DELMESH].min_angle,

@@ -459,12 +459,13 @@ impl Subdivision {
         let mid = [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
         let off_centre = |q: u32| {
             let q = self.point(q);
-            (q[0] - mid[0]).hypot(q[1] - mid[1])
+            (q[0] - mid[0]) * (q[0] - mid[0]) + (q[1] - mid[1]) * (q[1] - mid[1])
         };
         let n = disk
             .iter()
-            .copied()
-            .min_by(|&x, &y| off_centre(x).total_cmp(&off_centre(y)).then(x.cmp(&y)))
+            .map(|&x| (off_centre(x), x))
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))
+            .map(|(_, x)| x)
             .ok_or_else(|| Error::internal(format!("projection on edge {e}: empty small disk")))?;
         let q = self.point(n);
         let t = ((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / (ux * ux + uy * uy);
@@ -487,12 +488,15 @@ impl Subdivision {
     /// they are checked again ([`Subdivision::run`]).
     fn note_point(&mut self, p: u32) {
         let q = self.point(p);
-        for k in self.disks.candidates(&q) {
-            let e = self.edges[k as usize];
-            if e.alive
-                && e.a != p
+        let (edges, points) = (&self.edges, &self.cloud.points);
+        let bucket = self.disks.cell_of(&q);
+        // Dead edges leave the bucket as they are met.
+        bucket.retain(|&k| edges[k as usize].alive);
+        for &k in bucket.iter() {
+            let e = edges[k as usize];
+            if e.a != p
                 && e.b != p
-                && dot_sign(&self.point(e.a), &self.point(e.b), &q) != Sign::Positive
+                && dot_sign(&points[e.a as usize], &points[e.b as usize], &q) != Sign::Positive
             {
                 self.touched.push(k);
             }
@@ -548,10 +552,11 @@ impl Subdivision {
                     (k, self.point(e.a), self.point(e.b))
                 })
                 .collect();
-            self.disks = DiskGrid::new(self.cloud.bounds(), live.len());
+            let mut disks = DiskGrid::new(self.cloud.bounds(), live.len());
             for (k, a, b) in live {
-                self.disks.insert(k, &a, &b);
+                disks.insert(k, &a, &b);
             }
+            self.disks = disks;
         }
         Ok([first, first + 1])
     }
@@ -572,8 +577,9 @@ fn point_segment_distance(p: &[f64; 2], a: &[f64; 2], b: &[f64; 2]) -> f64 {
 
 /// A bucket grid of edges by the boxes of their small disks: the candidates whose disk may
 /// hold a point are the edges filed in its cell. Boxes and points are clamped to the grid, as
-/// in [`Cloud`], so a point of a disk is in a cell its edge is filed in. Edges are never
-/// taken out; callers skip the dead ones, and the grid is laid again when it is crowded.
+/// in [`Cloud`], so a point of a disk is in a cell its edge is filed in. Dead edges leave a
+/// bucket when a query meets them; the grid is laid again, from the live edges, when the
+/// edges filed outnumber its cells four times.
 struct DiskGrid {
     lo: [f64; 2],
     scale: f64,
@@ -626,9 +632,10 @@ impl DiskGrid {
         self.filed += 1;
     }
 
-    /// The edges filed in the cell of `p`.
-    fn candidates(&self, p: &[f64; 2]) -> Vec<u32> {
-        self.cells[self.axis(p[1], 1) * self.n + self.axis(p[0], 0)].clone()
+    /// The bucket of the cell of `p`.
+    fn cell_of(&mut self, p: &[f64; 2]) -> &mut Vec<u32> {
+        let id = self.axis(p[1], 1) * self.n + self.axis(p[0], 0);
+        &mut self.cells[id]
     }
 
     /// Whether the edges filed outnumber the cells four times.
