@@ -2,9 +2,11 @@
 //! overlap in about `O(n log n)` for items spread over a surface, and the items whose boxes
 //! hold a point.
 //!
-//! The tree is built top down: a node's items are split at the median of their box centers
-//! along the longest axis of the centers' extent, ties broken by item number, so the tree
-//! depends on the boxes only. Building and traversal use explicit stacks: no recursion.
+//! The items are ordered along a Morton curve of their box centers (ties broken by item
+//! number, so the tree depends on the boxes only), and the tree is built top down by halving
+//! that order (a linear BVH: one sort, no partitioning per node); node boxes are gathered from
+//! the leaves up. Correctness does not depend on the order, only the pruning does. Building
+//! and traversal use explicit stacks: no recursion.
 
 /// A closed axis-aligned box.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,7 +49,7 @@ impl Aabb {
 }
 
 /// Items in a leaf at most.
-const LEAF_SIZE: usize = 4;
+const LEAF_SIZE: usize = 8;
 
 /// A node: the box of its items, which are `order[start..end]`, and its two children unless
 /// it is a leaf.
@@ -83,52 +85,54 @@ impl Bvh {
         bvh
     }
 
-    /// Splits nodes, from the root holding every item, until leaves hold at most
-    /// [`LEAF_SIZE`] items.
+    /// Orders the items along a Morton (Z-order) curve of their box centers (ties: item
+    /// number), then splits nodes at the middle of their items, from the root holding every
+    /// item, until leaves hold at most [`LEAF_SIZE`]; bounds are gathered from the leaves up.
     fn build(&mut self) {
-        self.nodes.push(self.node(0, self.order.len()));
+        let codes = morton_codes(&self.boxes);
+        self.order.sort_unstable_by_key(|&i| (codes[i], i));
+        self.nodes.push(self.leaf(0, self.order.len()));
         let mut pending = vec![0];
         while let Some(index) = pending.pop() {
             let (start, end) = (self.nodes[index].start, self.nodes[index].end);
             if end - start <= LEAF_SIZE {
+                self.nodes[index].bounds = self.items_bounds(start, end);
                 continue;
             }
             let middle = start + (end - start) / 2;
-            self.partition(start, middle, end);
             let left = self.nodes.len();
-            self.nodes.push(self.node(start, middle));
-            self.nodes.push(self.node(middle, end));
+            self.nodes.push(self.leaf(start, middle));
+            self.nodes.push(self.leaf(middle, end));
             self.nodes[index].children = Some([left, left + 1]);
             pending.extend([left, left + 1]);
         }
+        // Children come after their parent.
+        for index in (0..self.nodes.len()).rev() {
+            if let Some([l, r]) = self.nodes[index].children {
+                let mut bounds = self.nodes[l].bounds;
+                bounds.include(&self.nodes[r].bounds);
+                self.nodes[index].bounds = bounds;
+            }
+        }
     }
 
-    /// A leaf node over `order[start..end]`.
-    fn node(&self, start: usize, end: usize) -> Node {
-        let mut bounds = self.boxes[self.order[start]];
-        for &item in &self.order[start + 1..end] {
-            bounds.include(&self.boxes[item]);
-        }
+    /// A node over `order[start..end]`, its bounds not yet known.
+    fn leaf(&self, start: usize, end: usize) -> Node {
         Node {
-            bounds,
+            bounds: self.boxes[self.order[start]],
             start,
             end,
             children: None,
         }
     }
 
-    /// Reorders `order[start..end]` so that the items before `middle` have the smaller centers
-    /// along the axis where the centers spread most (ties: smaller item number first).
-    fn partition(&mut self, start: usize, middle: usize, end: usize) {
-        let boxes = &self.boxes;
-        let items = &mut self.order[start..end];
-        let axis = longest_axis(items.iter().map(|&i| &boxes[i]));
-        items.select_nth_unstable_by(middle - start, |&i, &j| {
-            boxes[i]
-                .center2(axis)
-                .total_cmp(&boxes[j].center2(axis))
-                .then(i.cmp(&j))
-        });
+    /// The box holding the items `order[start..end]`.
+    fn items_bounds(&self, start: usize, end: usize) -> Aabb {
+        let mut bounds = self.boxes[self.order[start]];
+        for &item in &self.order[start + 1..end] {
+            bounds.include(&self.boxes[item]);
+        }
+        bounds
     }
 
     /// Calls `visit(i, j)`, `i < j`, once for every pair of distinct items whose boxes overlap.
@@ -203,8 +207,9 @@ impl Bvh {
     }
 }
 
-/// The axis along which the centers of `boxes` spread most (the first such axis on ties).
-fn longest_axis<'a>(boxes: impl Iterator<Item = &'a Aabb>) -> usize {
+/// The Morton codes of the box centers: each coordinate scaled to 21 bits over the extent of
+/// the centers, the bits interleaved.
+fn morton_codes(boxes: &[Aabb]) -> Vec<u64> {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for b in boxes {
@@ -213,6 +218,31 @@ fn longest_axis<'a>(boxes: impl Iterator<Item = &'a Aabb>) -> usize {
             hi[k] = hi[k].max(b.center2(k));
         }
     }
-    let extent = |k: usize| hi[k] - lo[k];
-    (1..3).fold(0, |best, k| if extent(k) > extent(best) { k } else { best })
+    let scale = [0, 1, 2].map(|k| {
+        let extent = hi[k] - lo[k];
+        if extent > 0.0 && extent.is_finite() {
+            ((1u64 << 21) - 1) as f64 / extent
+        } else {
+            0.0
+        }
+    });
+    boxes
+        .iter()
+        .map(|b| {
+            (0..3).fold(0u64, |code, k| {
+                let q = ((b.center2(k) - lo[k]) * scale[k]) as u64;
+                code | spread(q.min((1 << 21) - 1)) << k
+            })
+        })
+        .collect()
+}
+
+/// The 21 low bits of `x` moved to every third bit.
+fn spread(x: u64) -> u64 {
+    let mut x = x & 0x1f_ffff;
+    x = (x | x << 32) & 0x1f_0000_0000_ffff;
+    x = (x | x << 16) & 0x1f_0000_ff00_00ff;
+    x = (x | x << 8) & 0x100f_00f0_0f00_f00f;
+    x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
+    (x | x << 2) & 0x1249_2492_4924_9249
 }
