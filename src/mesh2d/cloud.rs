@@ -147,16 +147,10 @@ impl Cloud {
     }
 
     fn cell(&self, p: &[f64; 2]) -> (usize, usize) {
-        let axis = |k: usize, n: usize| {
-            let c = (p[k] - self.lo[k]) * self.scale;
-            // Truncation is the floor on nonnegative numbers; NaN and negatives go to 0.
-            if c >= 0.0 {
-                (c as usize).min(n - 1)
-            } else {
-                0
-            }
-        };
-        (axis(0, self.nx), axis(1, self.ny))
+        (
+            clamped_cell(p[0], self.lo[0], self.scale, self.nx),
+            clamped_cell(p[1], self.lo[1], self.scale, self.ny),
+        )
     }
 
     /// Calls `f` with every point whose bucket meets the box `[lo, hi]` (a superset of the
@@ -254,9 +248,21 @@ fn ring(cx: usize, cy: usize, r: usize) -> impl Iterator<Item = (usize, usize)> 
         .map(|(x, y)| (x as usize, y as usize))
 }
 
-/// The bounding box of `a, b`, widened by a relative margin that covers the rounding of the
-/// box itself: the small disk of `[a b]` lies in it.
-fn widened_box(a: &[f64; 2], b: &[f64; 2]) -> ([f64; 2], [f64; 2]) {
+/// The cell, among `n` of `1 / scale` from `lo`, of coordinate `x`; coordinates beyond the
+/// grid go to its first or last cell.
+pub fn clamped_cell(x: f64, lo: f64, scale: f64, n: usize) -> usize {
+    let c = (x - lo) * scale;
+    // Truncation is the floor on nonnegative numbers; NaN and negatives go to 0.
+    if c >= 0.0 {
+        (c as usize).min(n - 1)
+    } else {
+        0
+    }
+}
+
+/// A box holding the small disk of `[a b]` (the disk with diameter `[a b]`), widened by a
+/// relative margin that covers the rounding of the box itself.
+pub fn widened_box(a: &[f64; 2], b: &[f64; 2]) -> ([f64; 2], [f64; 2]) {
     let c = [(a[0] + b[0]) * 0.5, (a[1] + b[1]) * 0.5];
     let r = ((a[0] - b[0]).hypot(a[1] - b[1]) * 0.5) * (1.0 + 1e-9) + 1e-300;
     let pad = |x: f64| x.abs() * 4.0 * f64::EPSILON;

@@ -29,6 +29,9 @@ pub struct Regions {
     pub component: Vec<u32>,
     pub label: Vec<i32>,
     pub max_volume: Vec<f64>,
+    /// Where the bounding triangles were when the regions were found (stale once refinement
+    /// has replaced tetrahedra).
+    input: InputFacets,
 }
 
 impl Regions {
@@ -59,7 +62,7 @@ pub fn regions(
 ) -> Result<Regions> {
     let input = InputFacets::find(mesh, triangles)?;
     let component = components(mesh, &input);
-    label(mesh, &input, component, (triangles, first_hull), options)
+    label(mesh, input, component, (triangles, first_hull), options)
 }
 
 /// Where the input triangles are in the mesh: which facets of each tetrahedron slot are input
@@ -162,7 +165,7 @@ fn components(mesh: &TetMesh, input: &InputFacets) -> Vec<u32> {
 /// region seeds relabel and hole seeds drop theirs.
 fn label(
     mesh: &mut TetMesh,
-    input: &InputFacets,
+    input: InputFacets,
     component: Vec<u32>,
     (triangles, first_hull): (&[[u32; 3]], usize),
     options: &SurfaceOptions,
@@ -206,7 +209,7 @@ fn label(
         }
     }
     for seed in &options.regions {
-        let c = seed_component(mesh, input, &component, seed.point, "region")?;
+        let c = seed_component(mesh, &input, &component, seed.point, "region")?;
         if c == OUTSIDE {
             return Err(Error::invalid_argument(format!(
                 "region seed {:?} lies outside the surface",
@@ -219,13 +222,14 @@ fn label(
         }
     }
     for &h in &options.holes {
-        let c = seed_component(mesh, input, &component, h, "hole")?;
+        let c = seed_component(mesh, &input, &component, h, "hole")?;
         label[c as usize] = 0;
     }
     Ok(Regions {
         component,
         label,
         max_volume,
+        input,
     })
 }
 
@@ -266,13 +270,14 @@ fn seed_component(
     )))
 }
 
-/// The output arrays: the mesh of the kept regions, with the input triangles as facets.
-/// Steiner points have dimension 3, or 2 when `on_hull` (left on a kept convex hull).
+/// The output arrays: the mesh of the kept regions, with the input triangles as facets (the
+/// first of those [`regions`] was given; found again when `refined`). Steiner points have
+/// dimension 3, or 2 when `on_hull` (left on a kept convex hull).
 pub fn assemble(
     mesh: &mut TetMesh,
     n_input: usize,
     triangles: &[[u32; 3]],
-    regions: &Regions,
+    (regions, refined): (&Regions, bool),
     on_hull: &dyn Fn(u32) -> bool,
 ) -> Result<Mesh> {
     let label_of = |t: u32| regions.label[regions.component[t as usize] as usize];
@@ -309,7 +314,13 @@ pub fn assemble(
         }
         labels.push(label_of(t));
     }
-    let input = InputFacets::find(mesh, triangles)?;
+    let found;
+    let input = if refined {
+        found = InputFacets::find(mesh, triangles)?;
+        &found
+    } else {
+        &regions.input
+    };
     let mut facet_labels = Vec::with_capacity(2 * triangles.len());
     for (k, &f) in triangles.iter().enumerate() {
         let (front, back) = input.sides(mesh, k, f);

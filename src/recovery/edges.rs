@@ -11,7 +11,7 @@
 //! advancing, until the first crossings repeat or a bounded number of times.
 
 use super::flips::{flip23, remove_edge, remove_edge_deep, Protected};
-use super::tetmesh::TetMesh;
+use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::Sign;
 use crate::triangulation::tets::INFINITE;
@@ -109,13 +109,11 @@ pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -
 
 /// The sorted vertices of the facet or edge (then with [`INFINITE`] last) a crossing names.
 fn crossed(mesh: &TetMesh, c: Crossing) -> [u32; 3] {
-    let mut v = match c {
+    key(match c {
         Crossing::Facet(t, i) => mesh.facet(t, i),
         Crossing::Edge([x, y], _) => [x, y, INFINITE],
         Crossing::Vertex(v) => [v, INFINITE, INFINITE],
-    };
-    v.sort_unstable();
-    v
+    })
 }
 
 /// [`first_crossing`] from `s` toward `e`, an error when it is a vertex.

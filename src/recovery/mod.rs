@@ -114,15 +114,19 @@ pub fn tetrahedralize_surface(
     suppress::merge_interior(&mut mesh, &part.protected, points.len() as u32 + 8)?;
     suppress::relocate_interior(&mut mesh, &part, points.len() as u32 + 8);
     // The hull's triangles are in pieces where points stayed on them.
-    let mut bounding = tris.to_vec();
-    bounding.extend(
-        part.all_subfaces()
+    let facets: Vec<[u32; 3]> = if options.keep_convex_hull {
+        let pieces = part
+            .all_subfaces()
             .into_iter()
-            .filter(|&(f, _)| f >= tris.len())
-            .map(|(_, t)| t),
-    );
-    let mut regions = classify::regions(&mut mesh, &bounding, tris.len(), options)?;
-    if options.max_radius_edge_ratio > 0.0 || regions.max_volume.iter().any(|&v| v > 0.0) {
+            .filter(|&(f, _)| f >= tris.len());
+        tris.iter().copied().chain(pieces.map(|(_, t)| t)).collect()
+    } else {
+        tris.to_vec()
+    };
+    let mut regions = classify::regions(&mut mesh, &facets, tris.len(), options)?;
+    let refined =
+        options.max_radius_edge_ratio > 0.0 || regions.max_volume.iter().any(|&v| v > 0.0);
+    if refined {
         refine::refine(
             &mut mesh,
             &part.protected,
@@ -131,7 +135,7 @@ pub fn tetrahedralize_surface(
             points.len() as u32,
         )?;
     }
-    classify::assemble(&mut mesh, points.len(), tris, &regions, &|v| {
+    classify::assemble(&mut mesh, points.len(), tris, (&regions, refined), &|v| {
         part.host.contains_key(&v)
     })
 }

@@ -185,7 +185,8 @@ impl Refiner<'_> {
             return Ok(false);
         }
         let mut cavity = self.cavity(start, &c);
-        if split != Split::Centroid && self.encroaches(&cavity, &c, split) {
+        // `start` comes first in the cavity and was checked above.
+        if split != Split::Centroid && self.encroaches(&cavity[1..], &c, split) {
             return Ok(false);
         }
         let Some(cone) = self.star_shaped(start, &mut cavity, &c) else {
@@ -231,8 +232,8 @@ impl Refiner<'_> {
         (zeros < 3).then_some(at)
     }
 
-    /// The tetrahedra connected to `start` across non-input facets whose circumsphere
-    /// strictly holds `c`, and `start`.
+    /// `start`, first, and the tetrahedra connected to it across non-input facets whose
+    /// circumsphere strictly holds `c`.
     fn cavity(&mut self, start: u32, c: &Point) -> Vec<u32> {
         let cavity = self.search(start, 7, |me, u, i, n| {
             let q = me.mesh.tets.vertices(n);

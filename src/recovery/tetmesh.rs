@@ -326,8 +326,7 @@ impl TetMesh {
     }
 
     /// [`TetMesh::replace`] when `new` fills exactly the region of `old`, facet for facet;
-    /// `None`, changing nothing,
-    /// when it does not.
+    /// `None`, changing nothing, when it does not.
     pub fn try_replace(&mut self, old: &[u32], new: &[[u32; 4]]) -> Result<Option<Vec<u32>>> {
         let outer = self.outer_facets(old);
         match match_facets(&outer, new) {
