@@ -483,6 +483,162 @@ fn classification_agrees_with_the_delaunay_cover_on_cocircular_sets() {
     }
 }
 
+/// Sign of a rational.
+fn sign_of(x: &BigRational) -> Sign {
+    match x.cmp(&BigRational::from_integer(0.into())) {
+        std::cmp::Ordering::Greater => Sign::Positive,
+        std::cmp::Ordering::Less => Sign::Negative,
+        std::cmp::Ordering::Equal => Sign::Zero,
+    }
+}
+
+/// `orient2d(a, b, c)` in rationals.
+fn orient_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Sign {
+    let r = |p: [f64; 2], k: usize| rational(p[k]) - rational(a[k]);
+    sign_of(&(r(b, 0) * r(c, 1) - r(b, 1) * r(c, 0)))
+}
+
+/// Whether `q` is strictly inside (`Positive`), on or outside the circle through the
+/// non-collinear `a, b, c`, in rationals.
+fn in_circle_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2], q: [f64; 2]) -> Sign {
+    let row = |p: [f64; 2]| {
+        let (x, y) = (
+            rational(p[0]) - rational(q[0]),
+            rational(p[1]) - rational(q[1]),
+        );
+        let lift = &x * &x + &y * &y;
+        (x, y, lift)
+    };
+    let [(ax, ay, al), (bx, by, bl), (cx, cy, cl)] = [a, b, c].map(row);
+    let det =
+        al * (&bx * &cy - &by * &cx) - bl * (&ax * &cy - &ay * &cx) + cl * (ax * by - ay * bx);
+    sign_of(&det) * orient_exact(a, b, c)
+}
+
+/// `Θ₂([Pi Pj])` by Definition 2.2 read literally, by brute force over all points, in
+/// rationals.
+fn type_by_definition(points: &[[f64; 2]], i: usize, j: usize) -> Theta2 {
+    let (pi, pj) = (points[i], points[j]);
+    let n = points.len();
+    let others = |skip: [usize; 3]| (0..n).filter(move |k| !skip.contains(k));
+    let e: Vec<usize> = others([i, j, j])
+        .filter(|&k| in_closed_small_disk(pi, pj, points[k]))
+        .collect();
+    if e.is_empty() {
+        return Theta2::T0;
+    }
+    let sides: HashSet<Sign> = e.iter().map(|&k| orient_exact(pi, pj, points[k])).collect();
+    if sides.contains(&Sign::Zero) {
+        return Theta2::Through;
+    }
+    if sides.len() == 2 {
+        return Theta2::T2;
+    }
+    let q = *e
+        .iter()
+        .find(|&&q| {
+            e.iter()
+                .all(|&r| in_circle_exact(pi, pj, points[q], points[r]) != Sign::Positive)
+        })
+        .expect("a widest angle");
+    let dot = |k: usize| {
+        (rational(pi[k]) - rational(points[q][k])) * (rational(pj[k]) - rational(points[q][k]))
+    };
+    if sign_of(&(dot(0) + dot(1))) == Sign::Zero {
+        return Theta2::T1_0;
+    }
+    let position = |k: usize| in_circle_exact(pi, pj, points[q], points[k]);
+    if others([i, j, q]).any(|k| position(k) == Sign::Positive) {
+        return Theta2::T1_1;
+    }
+    let f: Vec<usize> = others([i, j, q])
+        .filter(|&k| position(k) == Sign::Zero)
+        .collect();
+    let side = orient_exact(pi, pj, points[q]);
+    if f.is_empty() {
+        Theta2::T1_0
+    } else if f.iter().all(|&k| orient_exact(pi, pj, points[k]) == side) {
+        Theta2::T1_2_0
+    } else {
+        Theta2::T1_2_1
+    }
+}
+
+#[test]
+fn classification_agrees_with_definition_2_2() {
+    // Every pair of: random points, points on a rotated grid (cocircular quadruples on
+    // slanted lines), and points on circles, on both sides of many edges.
+    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
+    let random: Vec<[f64; 2]> = (0..40)
+        .map(|_| [rng.gen::<f64>(), rng.gen::<f64>()])
+        .collect();
+    let rotated: Vec<[f64; 2]> = (0..36)
+        .map(|k| {
+            let (x, y) = ((k % 6) as f64, (k / 6) as f64);
+            [3.0 * x - 4.0 * y, 4.0 * x + 3.0 * y]
+        })
+        .collect();
+    let mut circles = Vec::new();
+    for r in [5.0f64, 10.0] {
+        // Pythagorean points of the circles of radius 5 and 10 about the origin.
+        for (x, y) in [(3.0, 4.0), (4.0, 3.0), (0.0, 5.0), (5.0, 0.0)] {
+            for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (1.0, -1.0), (-1.0, -1.0)] {
+                circles.push([sx * x * r / 5.0, sy * y * r / 5.0]);
+            }
+        }
+    }
+    circles.push([0.5, 0.25]);
+    let first = delmesh::mesh2d::delaunay::first_duplicates(&circles);
+    let circles: Vec<[f64; 2]> = (0..circles.len())
+        .filter(|&i| first[i] as usize == i)
+        .map(|i| circles[i])
+        .collect();
+    // Three points on one arc over [(0,0) (2,0)], its circle through no other point.
+    let arc = vec![
+        [0.0, 0.0],
+        [2.0, 0.0],
+        [1.0, 0.5],
+        [1.75, 0.25],
+        [0.25, 0.25],
+        [1.0, -3.0],
+    ];
+    let mut seen = HashSet::new();
+    let sets = [
+        ("random", random),
+        ("rotated grid", rotated),
+        ("circles", circles),
+        ("arc", arc),
+    ];
+    for (name, points) in sets {
+        let cloud = cloud_of(&points);
+        for i in 0..points.len() {
+            for j in 0..points.len() {
+                if i != j {
+                    let theta = classify(&cloud, i as u32, j as u32);
+                    seen.insert(theta);
+                    assert_eq!(
+                        theta,
+                        type_by_definition(&points, i, j),
+                        "{name}: edge ({i}, {j}) {:?} {:?}",
+                        points[i],
+                        points[j]
+                    );
+                }
+            }
+        }
+    }
+    for theta in [
+        Theta2::T0,
+        Theta2::T1_0,
+        Theta2::T1_1,
+        Theta2::T1_2_0,
+        Theta2::T1_2_1,
+        Theta2::T2,
+    ] {
+        assert!(seen.contains(&theta), "type {} never met", theta.name());
+    }
+}
+
 // ---------------------------------------------------------------- conforming subdivision
 
 #[test]

@@ -6,7 +6,7 @@
 //! `(Pi Pj)`; when `E` lies in one of them, `Q*` is a point of `E` seeing `[Pi Pj]` under the
 //! largest angle, `t = Pi Pj Q*` and `Δt` its closed circumdisk.
 
-use super::cloud::{Circumdisk, Cloud};
+use super::cloud::Cloud;
 use super::exact::{dot_sign, in_circumcircle};
 use crate::predicates::{orient2d, Sign};
 
@@ -54,7 +54,7 @@ impl Theta2 {
 
 /// `Θ₂([Pi Pj])` relative to the points of `cloud` (`i != j`, distinct coordinates).
 pub fn classify(cloud: &Cloud, i: u32, j: u32) -> Theta2 {
-    classify_with(cloud, i, j, &cloud.in_small_disk(i, j))
+    classify_with(cloud, i, j, cloud.small_disk(i, j))
 }
 
 /// Theorem 2.1 for `[Pi Pj]` relative to the points of `cloud`.
@@ -62,51 +62,52 @@ pub fn strongly_admissible(cloud: &Cloud, i: u32, j: u32) -> bool {
     classify(cloud, i, j).strongly_admissible()
 }
 
-/// [`classify`] when `E` (the points of the closed small disk but the ends) is known.
-pub fn classify_with(cloud: &Cloud, i: u32, j: u32, e: &[u32]) -> Theta2 {
+/// [`classify`] when `E` (the points of the closed small disk but the ends, in any order)
+/// is given; one pass over it.
+///
+/// The pass keeps `Q*`, a point of `E` seeing `[Pi Pj]` under the largest angle so far (`q`
+/// sees it under a larger angle than `r`, on the same side, iff `q` is strictly inside the
+/// circle through `Pi, Pj, r`), and whether another point seen so far is on that circle
+/// (a point on the circle of an earlier, narrower `Q*` is strictly outside the later one's).
+/// Points tied with `Q*` share its circle, so which of them is `Q*` does not change the type.
+pub fn classify_with(cloud: &Cloud, i: u32, j: u32, e: impl IntoIterator<Item = u32>) -> Theta2 {
     let p = |k: u32| &cloud.points[k as usize];
     let (pi, pj) = (p(i), p(j));
-    if e.is_empty() {
+    let mut e = e.into_iter();
+    let Some(first) = e.next() else {
         return Theta2::T0;
+    };
+    let side = orient2d(pi, pj, p(first));
+    if side == Sign::Zero {
+        return Theta2::Through;
     }
-    let mut side = Sign::Zero;
-    for &q in e {
+    let (mut q_star, mut tied, mut both) = (first, false, false);
+    for q in e {
         match orient2d(pi, pj, p(q)) {
             Sign::Zero => return Theta2::Through,
-            s if side == Sign::Zero => side = s,
-            s if s != side => return Theta2::T2,
-            _ => {}
+            s if s != side => both = true,
+            // Past the other side, only a point on the line can change the type.
+            _ if both => {}
+            _ => match in_circumcircle(pi, pj, p(q_star), p(q)) {
+                Sign::Positive => (q_star, tied) = (q, false),
+                Sign::Zero => tied = true,
+                Sign::Negative => {}
+            },
         }
     }
-    let q_star = widest_angle(cloud, i, j, e);
+    if both {
+        return Theta2::T2;
+    }
     if dot_sign(pi, pj, p(q_star)) == Sign::Zero {
         return Theta2::T1_0;
     }
-    let disk = match cloud.circumdisk(i, j, q_star) {
-        Circumdisk::Inside => return Theta2::T1_1,
-        Circumdisk::OnCircle(disk) => disk,
-    };
-    if disk.is_empty() {
-        return Theta2::T1_0;
+    // A point on Q*'s side in the closed `Δt` sees `[Pi Pj]` under an angle at least Q*'s,
+    // above 90°: it is in `E`, and on the circle (Q* sees it under the largest angle). So
+    // the open `Δt` can only hold points beyond the line, and `F` on Q*'s side is `tied`.
+    match cloud.circumdisk_beyond(i, j, q_star) {
+        Sign::Positive => Theta2::T1_1,
+        Sign::Zero => Theta2::T1_2_1,
+        Sign::Negative if tied => Theta2::T1_2_0,
+        Sign::Negative => Theta2::T1_0,
     }
-    // Every point of F is on the circle of t, hence off the line (Pi Pj).
-    if disk.iter().all(|&q| orient2d(pi, pj, p(q)) == side) {
-        Theta2::T1_2_0
-    } else {
-        Theta2::T1_2_1
-    }
-}
-
-/// A point of `e` (all on one side of `(Pi Pj)`) seeing `[Pi Pj]` under the largest angle:
-/// `q` sees it under a larger angle than `r` iff `q` is strictly inside the circle through
-/// `Pi, Pj, r`. The first such point in `e`'s order.
-fn widest_angle(cloud: &Cloud, i: u32, j: u32, e: &[u32]) -> u32 {
-    let p = |k: u32| &cloud.points[k as usize];
-    let mut best = e[0];
-    for &q in &e[1..] {
-        if in_circumcircle(p(i), p(j), p(best), p(q)) == Sign::Positive {
-            best = q;
-        }
-    }
-    best
 }

@@ -8,7 +8,7 @@
 //! the same way). Queries return candidates whose cells meet the box; exact predicates decide.
 
 use super::exact::{dot_sign, in_circumcircle};
-use crate::predicates::Sign;
+use crate::predicates::{orient2d, Sign};
 
 /// Points and their bucket grid.
 pub struct Cloud {
@@ -155,13 +155,19 @@ impl Cloud {
 
     /// Calls `f` with every point whose bucket meets the box `[lo, hi]` (a superset of the
     /// points in the box), in no particular order.
-    pub fn candidates(&self, lo: [f64; 2], hi: [f64; 2], mut f: impl FnMut(u32)) {
+    pub fn candidates(&self, lo: [f64; 2], hi: [f64; 2], f: impl FnMut(u32)) {
+        self.in_cells_of(lo, hi).for_each(f);
+    }
+
+    /// The points whose bucket meets the box `[lo, hi]`, row by row of cells.
+    fn in_cells_of(&self, lo: [f64; 2], hi: [f64; 2]) -> BoxPoints<'_> {
         let (x0, y0) = self.cell(&lo);
         let (x1, y1) = self.cell(&hi);
-        for cy in y0..=y1 {
-            for cx in x0..=x1 {
-                self.bucket(cx, cy).for_each(&mut f);
-            }
+        BoxPoints {
+            cloud: self,
+            cells: [x0, y0, x1, y1],
+            at: (x0, y0),
+            point: self.head[y0 * self.nx + x0],
         }
     }
 
@@ -177,74 +183,120 @@ impl Cloud {
     /// The points other than `a` and `b` in the closed small disk of `[a b]` (the disk with
     /// diameter `[a b]`), decided exactly, in increasing index order.
     pub fn in_small_disk(&self, a: u32, b: u32) -> Vec<u32> {
-        let (pa, pb) = (self.points[a as usize], self.points[b as usize]);
-        let (lo, hi) = widened_box(&pa, &pb);
-        let mut found = Vec::new();
-        self.candidates(lo, hi, |i| {
-            if i != a && i != b && dot_sign(&pa, &pb, &self.points[i as usize]) != Sign::Positive {
-                found.push(i);
-            }
-        });
+        let mut found: Vec<u32> = self.small_disk(a, b).collect();
         found.sort_unstable();
         found
     }
 
-    /// Where the points other than `a`, `b`, `c` lie with respect to the circumcircle of the
-    /// non-collinear `a, b, c`, decided exactly: [`Circumdisk::Inside`] as soon as one lies
-    /// strictly inside, else the points on the circle in increasing index order. The cells
-    /// are visited in rings around the midpoint of `a b`, where a point inside is likeliest:
-    /// the circumdisk of a flat triangle covers most of the grid, and a scan in row order
-    /// would often meet its first inside point last.
-    pub fn circumdisk(&self, a: u32, b: u32, c: u32) -> Circumdisk {
+    /// The points of [`Cloud::in_small_disk`], as the grid meets them.
+    pub fn small_disk(&self, a: u32, b: u32) -> impl Iterator<Item = u32> + '_ {
+        let (pa, pb) = (self.points[a as usize], self.points[b as usize]);
+        let (lo, hi) = widened_box(&pa, &pb);
+        self.in_cells_of(lo, hi).filter(move |&i| {
+            i != a && i != b && dot_sign(&pa, &pb, &self.points[i as usize]) != Sign::Positive
+        })
+    }
+
+    /// Where the points strictly beyond the line `(a b)`, on the side opposite `c`, lie with
+    /// respect to the circumcircle of the non-collinear `a, b, c`, decided exactly: the
+    /// greatest [`in_circumcircle`] sign among them (`Positive` as soon as one lies strictly
+    /// inside; `Negative` when none is inside or on the circle, or there is none). Only the
+    /// cells meeting the part of the circle's box beyond the line are visited, in rings around
+    /// the midpoint of `a b`, where a point inside is likeliest: the circumdisk of a flat
+    /// triangle covers most of the grid, and a scan in row order would often meet its first
+    /// inside point last.
+    pub fn circumdisk_beyond(&self, a: u32, b: u32, c: u32) -> Sign {
         let [pa, pb, pc] = [a, b, c].map(|i| self.points[i as usize]);
-        let (lo, hi) =
-            circumdisk_box(&pa, &pb, &pc).unwrap_or(([f64::NEG_INFINITY; 2], [f64::INFINITY; 2]));
+        let near = orient2d(&pa, &pb, &pc);
+        let (lo, hi) = match circumdisk_box(&pa, &pb, &pc) {
+            Some(disk) => match beyond_line(disk, &pa, &pb, near) {
+                Some(part) => part,
+                None => return Sign::Negative,
+            },
+            None => ([f64::NEG_INFINITY; 2], [f64::INFINITY; 2]),
+        };
         let (x0, y0) = self.cell(&lo);
         let (x1, y1) = self.cell(&hi);
         let (mx, my) = self.cell(&[(pa[0] + pb[0]) * 0.5, (pa[1] + pb[1]) * 0.5]);
         let (cx, cy) = (mx.clamp(x0, x1), my.clamp(y0, y1));
         let reach = (cx - x0).max(x1 - cx).max(cy - y0).max(y1 - cy);
-        let mut on_circle = Vec::new();
+        let mut greatest = Sign::Negative;
         for r in 0..=reach {
-            for (x, y) in ring(cx, cy, r) {
-                if x < x0 || x > x1 || y < y0 || y > y1 {
-                    continue;
-                }
-                for i in self.bucket(x, y).filter(|&i| i != a && i != b && i != c) {
-                    match in_circumcircle(&pa, &pb, &pc, &self.points[i as usize]) {
-                        Sign::Positive => return Circumdisk::Inside,
-                        Sign::Zero => on_circle.push(i),
+            for (x, y) in ring((cx, cy), r, [x0, y0, x1, y1]) {
+                for i in self.bucket(x, y) {
+                    let q = &self.points[i as usize];
+                    if orient2d(&pa, &pb, q) * near != Sign::Negative {
+                        continue;
+                    }
+                    match in_circumcircle(&pa, &pb, &pc, q) {
+                        Sign::Positive => return Sign::Positive,
+                        Sign::Zero => greatest = Sign::Zero,
                         Sign::Negative => {}
                     }
                 }
             }
         }
-        on_circle.sort_unstable();
-        Circumdisk::OnCircle(on_circle)
+        greatest
     }
 }
 
-/// What [`Cloud::circumdisk`] finds.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Circumdisk {
-    /// Some point lies strictly inside the circle.
-    Inside,
-    /// No point lies inside; these lie on the circle.
-    OnCircle(Vec<u32>),
+/// The iterator of [`Cloud::in_cells_of`]: the cells `[x0, y0, x1, y1]` in rows, and in each
+/// cell its bucket list.
+struct BoxPoints<'a> {
+    cloud: &'a Cloud,
+    cells: [usize; 4],
+    /// The current cell.
+    at: (usize, usize),
+    /// The next point of the current cell's list (NONE at its end).
+    point: u32,
 }
 
-/// The cells at distance `r` (in the maximum norm) from cell `(cx, cy)`, those with negative
-/// coordinates left out.
-fn ring(cx: usize, cy: usize, r: usize) -> impl Iterator<Item = (usize, usize)> {
-    let (cx, cy, r) = (cx as isize, cy as isize, r as isize);
-    let rows = (-r..=r).flat_map(move |dx| {
-        let top = (cx + dx, cy - r);
-        let bottom = (cx + dx, cy + r);
-        std::iter::once(top).chain((r > 0).then_some(bottom))
-    });
-    let sides = (1 - r..r).flat_map(move |dy| [(cx - r, cy + dy), (cx + r, cy + dy)]);
-    rows.chain(sides)
-        .filter(|&(x, y)| x >= 0 && y >= 0)
+impl Iterator for BoxPoints<'_> {
+    type Item = u32;
+
+    fn next(&mut self) -> Option<u32> {
+        let [x0, _, x1, y1] = self.cells;
+        while self.point == NONE {
+            let (x, y) = &mut self.at;
+            if *x < x1 {
+                *x += 1;
+            } else if *y < y1 {
+                (*x, *y) = (x0, *y + 1);
+            } else {
+                return None;
+            }
+            self.point = self.cloud.head[*y * self.cloud.nx + *x];
+        }
+        let i = self.point;
+        self.point = self.cloud.next[i as usize];
+        Some(i)
+    }
+}
+
+/// The cells at distance `r` (in the maximum norm) from cell `(cx, cy)` within the cells
+/// `[x0, y0, x1, y1]` (those `(x, y)` with `x0 <= x <= x1`, `y0 <= y <= y1`): the ring's
+/// bottom and top rows, then the rest of its left and right columns.
+fn ring(
+    (cx, cy): (usize, usize),
+    r: usize,
+    cells: [usize; 4],
+) -> impl Iterator<Item = (usize, usize)> {
+    let [cx, cy, r] = [cx, cy, r].map(|x| x as isize);
+    let [x0, y0, x1, y1] = cells.map(|x| x as isize);
+    let columns = (cx - r).max(x0)..=(cx + r).min(x1);
+    let between = (cy - r + 1).max(y0)..=(cy + r - 1).min(y1);
+    let rows = [Some(cy - r), (r > 0).then_some(cy + r)];
+    let sides = [(r > 0).then_some(cx - r), (r > 0).then_some(cx + r)];
+    let rows = rows
+        .into_iter()
+        .flatten()
+        .filter(move |y| (y0..=y1).contains(y));
+    let sides = sides
+        .into_iter()
+        .flatten()
+        .filter(move |x| (x0..=x1).contains(x));
+    rows.flat_map(move |y| columns.clone().map(move |x| (x, y)))
+        .chain(sides.flat_map(move |x| between.clone().map(move |y| (x, y))))
         .map(|(x, y)| (x as usize, y as usize))
 }
 
@@ -297,4 +349,114 @@ fn circumdisk_box(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Option<([f64; 2],
         [centre[0] - r, centre[1] - r],
         [centre[0] + r, centre[1] + r],
     ))
+}
+
+/// The box of the part of the box `[lo, hi]` (finite) strictly on the side of the line
+/// `(a b)` opposite `near` (nonzero), widened to cover the rounding of the line's crossings
+/// with the box's sides; `None` when the whole box is on `near`'s side. The corners' sides
+/// are decided exactly; a side is crossed between two corners on different sides.
+fn beyond_line(
+    (lo, hi): ([f64; 2], [f64; 2]),
+    a: &[f64; 2],
+    b: &[f64; 2],
+    near: Sign,
+) -> Option<([f64; 2], [f64; 2])> {
+    let corners = [
+        [lo[0], lo[1]],
+        [hi[0], lo[1]],
+        [hi[0], hi[1]],
+        [lo[0], hi[1]],
+    ];
+    let beyond = corners.map(|p| orient2d(a, b, &p) != near);
+    if !beyond.iter().any(|&x| x) {
+        return None;
+    }
+    let (mut min, mut max) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    let mut include = |k: usize, from: f64, to: f64| {
+        min[k] = min[k].min(from);
+        max[k] = max[k].max(to);
+    };
+    for (corner, _) in corners.iter().zip(beyond).filter(|&(_, x)| x) {
+        include(0, corner[0], corner[0]);
+        include(1, corner[1], corner[1]);
+    }
+    for k in 0..4 {
+        let (p, q) = (corners[k], corners[(k + 1) % 4]);
+        if beyond[k] == beyond[(k + 1) % 4] {
+            continue;
+        }
+        // Sides 0 and 2 are horizontal: the crossing's abscissa varies; sides 1 and 3 its
+        // ordinate. The line is not parallel to a side it crosses.
+        let along = usize::from(k % 2 == 1);
+        let fixed = 1 - along;
+        let t = (p[fixed] - a[fixed]) * (b[along] - a[along]) / (b[fixed] - a[fixed]);
+        let x = a[along] + t;
+        // Five roundings in `t`, one in the sum, each at most half an epsilon relative.
+        let error = 4.0 * f64::EPSILON * (a[along].abs() + t.abs()) + f64::MIN_POSITIVE;
+        let (side_lo, side_hi) = (p[along].min(q[along]), p[along].max(q[along]));
+        include(along, (x - error).max(side_lo), (x + error).min(side_hi));
+        include(fixed, p[fixed], p[fixed]);
+    }
+    Some((min, max))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    #[test]
+    fn the_part_beyond_a_line_holds_every_point_beyond_it() {
+        let mut rng = rand::rngs::StdRng::seed_from_u64(5);
+        for _ in 0..2000 {
+            let mut corner =
+                || -> [f64; 2] { [rng.gen_range(-4.0..4.0), rng.gen_range(-4.0..4.0)] };
+            let (p, q) = (corner(), corner());
+            let lo = [p[0].min(q[0]), p[1].min(q[1])];
+            let hi = [p[0].max(q[0]), p[1].max(q[1])];
+            let (a, b) = (corner(), corner());
+            let near = if rng.gen_bool(0.5) {
+                Sign::Positive
+            } else {
+                Sign::Negative
+            };
+            let part = beyond_line((lo, hi), &a, &b, near);
+            for _ in 0..200 {
+                let x = [rng.gen_range(lo[0]..=hi[0]), rng.gen_range(lo[1]..=hi[1])];
+                if orient2d(&a, &b, &x) * near != Sign::Positive {
+                    let (l, h) = part.expect("a point beyond the line, so a part");
+                    assert!(
+                        (0..2).all(|k| l[k] <= x[k] && x[k] <= h[k]),
+                        "{x:?} out of {part:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_part_beyond_a_line_is_tight() {
+        let unit = ([0.0, 0.0], [1.0, 1.0]);
+        let close = |x: f64, y: f64| (x - y).abs() < 1e-14;
+        // Beyond the horizontal line y = 0.5 from (0.5, 1) (on its left): the lower half.
+        let (lo, hi) = beyond_line(unit, &[0.0, 0.5], &[1.0, 0.5], Sign::Positive).unwrap();
+        assert!(
+            lo == [0.0, 0.0] && hi[0] == 1.0 && close(hi[1], 0.5),
+            "{hi:?}"
+        );
+        // Beyond the diagonal x + y = 1 from the origin: the triangle's box, the whole square.
+        let (lo, hi) = beyond_line(unit, &[1.0, 0.0], &[0.0, 1.0], Sign::Positive).unwrap();
+        assert_eq!((lo, hi), ([0.0, 0.0], [1.0, 1.0]));
+        // Beyond x + y = 1.5 from the origin: the corner triangle above (0.5, 1) and (1, 0.5).
+        let (lo, hi) = beyond_line(unit, &[1.5, 0.0], &[0.0, 1.5], Sign::Positive).unwrap();
+        assert!(
+            (0..2).all(|k| close(lo[k], 0.5) && hi[k] == 1.0),
+            "{lo:?} {hi:?}"
+        );
+        // A line missing the box, the box on the near side.
+        assert_eq!(
+            beyond_line(unit, &[3.0, 0.0], &[3.0, 1.0], Sign::Positive),
+            None
+        );
+    }
 }

@@ -60,7 +60,7 @@
 
 use std::collections::{BinaryHeap, VecDeque};
 
-use super::classify::classify_with;
+use super::classify::strongly_admissible;
 use super::cloud::Cloud;
 use super::delaunay::{conflict, hilbert_order, INFINITE};
 use super::exact::dot_sign;
@@ -1170,12 +1170,6 @@ fn split_point(a: [f64; 2], b: [f64; 2], a_apex: bool, b_apex: bool) -> [f64; 2]
     ]
 }
 
-/// Whether `[a b]` is strongly Delaunay-admissible relative to the indexed points of `cloud`
-/// (Pébay's Theorem 2.1).
-fn admissible(cloud: &Cloud, a: u32, b: u32) -> bool {
-    classify_with(cloud, a, b, &cloud.in_small_disk(a, b)).strongly_admissible()
-}
-
 /// The first phase: splits the input segments `segments` (point pairs of `cloud`, which holds
 /// the input points) at concentric shells or midpoints until every sub-segment is strongly
 /// Delaunay-admissible relative to the points of the cloud's grid (Pébay's criterion, with
@@ -1205,7 +1199,7 @@ pub fn split_segments(
             let now = cloud.points.len();
             let (clean, dirty): (Vec<_>, Vec<_>) = done
                 .into_iter()
-                .partition(|&(e, seen)| seen == now || admissible(cloud, e[0], e[1]));
+                .partition(|&(e, seen)| seen == now || strongly_admissible(cloud, e[0], e[1]));
             done = clean.into_iter().map(|(e, _)| (e, now)).collect();
             if dirty.is_empty() {
                 break;
@@ -1213,7 +1207,7 @@ pub fn split_segments(
             stack = dirty.into_iter().rev().map(|(e, _)| e).collect();
             continue;
         };
-        if admissible(cloud, a, b) {
+        if strongly_admissible(cloud, a, b) {
             done.push(([a, b, s], cloud.points.len()));
             continue;
         }

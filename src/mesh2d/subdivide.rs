@@ -55,7 +55,7 @@
 
 use std::collections::BinaryHeap;
 
-use super::classify::classify_with;
+use super::classify::{classify_with, strongly_admissible};
 use super::cloud::{clamped_cell, widened_box, Cloud};
 use super::exact::dot_sign;
 use crate::error::{Error, ErrorKind, Result};
@@ -227,7 +227,7 @@ impl Subdivision {
 
     fn admissible_with(&self, e: u32, disk: &[u32]) -> bool {
         let edge = self.edges[e as usize];
-        classify_with(&self.cloud, edge.a, edge.b, disk).strongly_admissible()
+        classify_with(&self.cloud, edge.a, edge.b, disk.iter().copied()).strongly_admissible()
     }
 
     fn point(&self, i: u32) -> [f64; 2] {
@@ -425,8 +425,7 @@ impl Subdivision {
                 } else {
                     far
                 };
-                let disk = self.cloud.in_small_disk(p, end);
-                if !classify_with(&self.cloud, p, end, &disk).strongly_admissible() {
+                if !strongly_admissible(&self.cloud, p, end) {
                     failing = Some((j, !cut[j] && lengths[j] > d && self.can_cut(p, far, d)));
                     break;
                 }

@@ -107,9 +107,12 @@ fn incircle_fixed(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Opt
     if highest - lowest > 62 {
         return None;
     }
-    let x = parts.map(|(odd, low)| i128::from(odd) << (low - lowest));
-    let lift = |k: usize| x[2 * k] * x[2 * k] + x[2 * k + 1] * x[2 * k + 1];
-    let minor = |i: usize, j: usize| x[2 * i] * x[2 * j + 1] - x[2 * j] * x[2 * i + 1];
+    // Below 2^62 in magnitude: the products below widen 64 by 64 bits.
+    let x = parts.map(|(odd, low)| odd << (low - lowest));
+    let product = |a: i64, b: i64| i128::from(a) * i128::from(b);
+    let lift = |k: usize| product(x[2 * k], x[2 * k]) + product(x[2 * k + 1], x[2 * k + 1]);
+    let minor =
+        |i: usize, j: usize| product(x[2 * i], x[2 * j + 1]) - product(x[2 * j], x[2 * i + 1]);
     let det = [(0, 1, 2), (1, 2, 0), (2, 0, 1)]
         .map(|(k, i, j)| wide_product(lift(k), minor(i, j)))
         .into_iter()

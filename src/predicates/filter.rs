@@ -141,7 +141,8 @@ impl Bound {
 
 /// The first `D` coordinates of `p - q`.
 #[inline]
-fn diff<const D: usize>(p: &[f64], q: &[f64]) -> [f64; D] {
+fn diff<const D: usize, const N: usize>(p: &[f64; N], q: &[f64; N]) -> [f64; D] {
+    const { assert!(D <= N) };
     std::array::from_fn(|k| p[k] - q[k])
 }
 
@@ -202,7 +203,7 @@ fn lifted_det4(rows: &[[f64; 3]; 4], lifts: &[f64; 4]) -> f64 {
 /// Filter of [`super::orient2d`].
 #[inline]
 pub(super) fn orient2d(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Option<Sign> {
-    let rows = [diff::<2>(b, a), diff::<2>(c, a)];
+    let rows = [diff::<2, 2>(b, a), diff::<2, 2>(c, a)];
     let m = maxima(&rows);
     let (smallest, largest) = extremes(&m);
     ORIENT2D.certify(minor(&rows[0], &rows[1]), m[0] * m[1], smallest, largest)
@@ -211,7 +212,7 @@ pub(super) fn orient2d(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Option<Sign>
 /// Filter of [`super::incircle`].
 #[inline]
 pub(super) fn incircle(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Option<Sign> {
-    let rows = [diff::<2>(a, d), diff::<2>(b, d), diff::<2>(c, d)];
+    let rows = [diff::<2, 2>(a, d), diff::<2, 2>(b, d), diff::<2, 2>(c, d)];
     let lifts = rows.map(|r| r[0] * r[0] + r[1] * r[1]);
     let m = maxima(&rows);
     let (smallest, largest) = extremes(&m);
@@ -222,7 +223,7 @@ pub(super) fn incircle(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -
 /// Filter of [`super::orient3d`].
 #[inline]
 pub(super) fn orient3d(a: &Point, b: &Point, c: &Point, d: &Point) -> Option<Sign> {
-    let [r, s, t] = [diff::<3>(b, a), diff::<3>(c, a), diff::<3>(d, a)];
+    let [r, s, t] = [diff::<3, _>(b, a), diff::<3, _>(c, a), diff::<3, _>(d, a)];
     let det = (r[2] * minor(&s, &t) - s[2] * minor(&r, &t)) + t[2] * minor(&r, &s);
     let m = maxima(&[r, s, t]);
     let (smallest, largest) = extremes(&m);
@@ -232,7 +233,7 @@ pub(super) fn orient3d(a: &Point, b: &Point, c: &Point, d: &Point) -> Option<Sig
 /// Filter of [`super::insphere`]: the translated determinant is `-insphere`.
 #[inline]
 pub(super) fn insphere(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Option<Sign> {
-    let rows = [a, b, c, d].map(|p| diff::<3>(p, e));
+    let rows = [a, b, c, d].map(|p| diff::<3, _>(p, e));
     let lifts = rows.map(|r| square_norm(&r));
     let m = maxima(&rows);
     let (smallest, largest) = extremes(&m);
@@ -249,7 +250,7 @@ pub(super) fn power_test(
     e: &WeightedPoint,
 ) -> Option<Sign> {
     let points = [a, b, c, d];
-    let rows = points.map(|p| diff::<3>(p, e));
+    let rows = points.map(|p| diff::<3, _>(p, e));
     let weights = points.map(|p| p[3] - e[3]);
     let lifts = std::array::from_fn(|i| square_norm(&rows[i]) - weights[i]);
     let m = maxima(&rows);
@@ -320,7 +321,7 @@ impl BoxBounds {
     /// call's own maxima.
     #[inline]
     pub fn orient3d(&self, a: &Point, b: &Point, c: &Point, d: &Point) -> Option<Sign> {
-        let [r, s, t] = [diff::<3>(b, a), diff::<3>(c, a), diff::<3>(d, a)];
+        let [r, s, t] = [diff::<3, _>(b, a), diff::<3, _>(c, a), diff::<3, _>(d, a)];
         let det = (r[2] * minor(&s, &t) - s[2] * minor(&r, &t)) + t[2] * minor(&r, &s);
         certify(det, self.orient3d).or_else(|| {
             let m = maxima(&[r, s, t]);
@@ -333,7 +334,7 @@ impl BoxBounds {
     /// call's own maxima.
     #[inline]
     pub fn insphere(&self, a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Option<Sign> {
-        let rows = [a, b, c, d].map(|p| diff::<3>(p, e));
+        let rows = [a, b, c, d].map(|p| diff::<3, _>(p, e));
         let lifts = rows.map(|r| square_norm(&r));
         let det = -lifted_det4(&rows, &lifts);
         certify(det, self.insphere).or_else(|| {
@@ -367,7 +368,10 @@ impl BoxBounds2d {
     /// [`orient2d`] decided by the box's bound alone.
     #[inline]
     pub fn orient2d(&self, a: &[f64; 2], b: &[f64; 2], c: &[f64; 2]) -> Option<Sign> {
-        certify(minor(&diff::<2>(b, a), &diff::<2>(c, a)), self.orient2d)
+        certify(
+            minor(&diff::<2, 2>(b, a), &diff::<2, 2>(c, a)),
+            self.orient2d,
+        )
     }
 
     /// [`incircle`] decided by the box's bound, else `fallback()`. The sign is taken as a
@@ -379,7 +383,7 @@ impl BoxBounds2d {
         [a, b, c, d]: [&[f64; 2]; 4],
         fallback: impl FnOnce() -> Sign,
     ) -> Sign {
-        let rows = [diff::<2>(a, d), diff::<2>(b, d), diff::<2>(c, d)];
+        let rows = [diff::<2, 2>(a, d), diff::<2, 2>(b, d), diff::<2, 2>(c, d)];
         let lifts = rows.map(|r| r[0] * r[0] + r[1] * r[1]);
         let det = lifted_det3(&rows, &lifts);
         if det.abs() > self.incircle {
