@@ -73,25 +73,23 @@ fn incircle_big(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Sign 
     sign(&det3(&rows))
 }
 
-/// [`incircle`] in fixed-width integers, when the differences `a - d`, `b - d`, `c - d` are
-/// exact doubles that are all integer multiples `X 2^e` of one power of two with `|X| < 2^62`
-/// (nearby points, the usual case of a near-degenerate test): the lifted coordinates and the
-/// 2 by 2 minors are then below `2^125` in `i128`, and the determinant below `2^252` in a
-/// 256-bit sum. `None` when the differences do not qualify.
+/// [`incircle`] in fixed-width integers, when the eight coordinates are integer multiples
+/// `X 2^e` of one power of two with `|X| < 2^61` (nearby points, the usual case of a
+/// near-degenerate test, grids above all): the differences `a - d`, `b - d`, `c - d` are then
+/// below `2^62`, the lifted coordinates and the 2 by 2 minors below `2^125` in `i128`, and
+/// the determinant below `2^252` in a 256-bit sum. `None` when the coordinates do not qualify.
 fn incircle_fixed(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Option<Sign> {
-    let mut diffs = [0.0; 6];
-    for (k, p) in [a, b, c].into_iter().enumerate() {
-        for j in 0..2 {
-            diffs[2 * k + j] = exact_difference(p[j], d[j])?;
-        }
-    }
-    // Each nonzero difference is m 2^e with m odd: its lowest bit 2^e, its highest below
+    // Each nonzero coordinate is m 2^e with m odd: its lowest bit 2^e, its highest below
     // 2^(e + bits of m).
-    let mut parts = [(0i64, 0i32); 6];
+    let coordinates = [a[0], a[1], b[0], b[1], c[0], c[1], d[0], d[1]];
+    let mut parts = [(0i64, 0i32); 8];
     let (mut lowest, mut highest) = (i32::MAX, i32::MIN);
-    for (part, &x) in parts.iter_mut().zip(&diffs) {
+    for (part, &x) in parts.iter_mut().zip(&coordinates) {
         if x == 0.0 {
             continue;
+        }
+        if !x.is_finite() {
+            return None;
         }
         let (mantissa, exponent, sign) = x.integer_decode();
         let zeros = mantissa.trailing_zeros();
@@ -104,15 +102,16 @@ fn incircle_fixed(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Opt
     if lowest == i32::MAX {
         return Some(Sign::Zero);
     }
-    if highest - lowest > 62 {
+    if highest - lowest > 61 {
         return None;
     }
-    // Below 2^62 in magnitude: the products below widen 64 by 64 bits.
     let x = parts.map(|(odd, low)| odd << (low - lowest));
+    // Below 2^62 in magnitude: the products below widen 64 by 64 bits.
+    let r: [i64; 6] = std::array::from_fn(|k| x[k] - x[6 + k % 2]);
     let product = |a: i64, b: i64| i128::from(a) * i128::from(b);
-    let lift = |k: usize| product(x[2 * k], x[2 * k]) + product(x[2 * k + 1], x[2 * k + 1]);
+    let lift = |k: usize| product(r[2 * k], r[2 * k]) + product(r[2 * k + 1], r[2 * k + 1]);
     let minor =
-        |i: usize, j: usize| product(x[2 * i], x[2 * j + 1]) - product(x[2 * j], x[2 * i + 1]);
+        |i: usize, j: usize| product(r[2 * i], r[2 * j + 1]) - product(r[2 * j], r[2 * i + 1]);
     let det = [(0, 1, 2), (1, 2, 0), (2, 0, 1)]
         .map(|(k, i, j)| wide_product(lift(k), minor(i, j)))
         .into_iter()
@@ -122,14 +121,6 @@ fn incircle_fixed(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Opt
         (high, _) if high < 0 => Sign::Negative,
         _ => Sign::Positive,
     })
-}
-
-/// `p - q` when it is a double (no rounding: the tail of Knuth's two-difference is zero).
-fn exact_difference(p: f64, q: f64) -> Option<f64> {
-    let x = p - q;
-    let bv = p - x;
-    let av = x + bv;
-    ((p - av) + (bv - q) == 0.0 && x.is_finite()).then_some(x)
 }
 
 /// `a b` as a 256-bit two's complement integer `(high, low)`, for `|a|, |b| < 2^126`.
