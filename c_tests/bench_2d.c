@@ -11,8 +11,8 @@
  *   star      quality meshing at 25 degrees, no size bound, of a star-shaped polygon with
  *             10^4 edges (r = 1 + 0.3 sin(12 t)): delmesh_triangulate_2d QUALITY vs CGAL's
  *             refine_Delaunay_mesh_2 (Delaunay_mesh_size_criteria_2, shape bound sin^2 25 deg);
- *   holes     the same on the unit square pierced by a 50 x 50 grid of square holes (10^4 + 4
- *             edges, 2500 hole seeds);
+ *   holes     the same on the unit square pierced by a 100 x 100 grid of square holes (4 10^4 + 4
+ *             edges, 10^4 hole seeds);
  *   conform   conforming Delaunay triangulation of a random star polygon of 10^4 edges (sorted
  *             random angles, radii uniform in [0.3, 1]: many acute angles) and 10^4 random
  *             points in [-0.2, 0.2]^2: delmesh_triangulate_2d CONFORMING (Pebay) vs CGAL's
@@ -40,7 +40,7 @@
 #define REPETITIONS 3
 #define MIN_ANGLE 25.0
 #define STAR_EDGES 10000
-#define HOLE_GRID 50
+#define HOLE_GRID 100
 
 enum { DELMESH, CGAL, TOOLS };
 static const char *const tool_names[TOOLS] = {"delmesh", "cgal"};
