@@ -377,16 +377,42 @@ mod tests {
 
     use crate::predicates::splitmix64 as next;
 
-    #[test]
-    fn fixed_width_incircle_agrees_with_big_integers() {
-        let mut state = 11;
+    /// Runs `case` on 40000 rounds (the round number and a draw of `0..n`); each gives the
+    /// fixed-width sign, if the inputs qualified, and the big-integer one, which must agree.
+    /// More than half the rounds must qualify and more than 500 be degenerate.
+    fn assert_agreement(
+        mut state: u64,
+        mut case: impl FnMut(usize, &mut dyn FnMut(u64) -> u64) -> Option<(Sign, Sign)>,
+    ) {
         let (mut decided, mut zeros) = (0, 0);
         for round in 0..40000 {
-            let mut draw = |n: u64| next(&mut state) % n;
+            let Some((sign, expected)) = case(round, &mut |n| next(&mut state) % n) else {
+                continue;
+            };
+            assert_eq!(sign, expected, "round {round}");
+            decided += 1;
+            zeros += usize::from(expected == Sign::Zero);
+        }
+        assert!(
+            decided > 20000 && zeros > 500,
+            "{decided} decided, {zeros} zero"
+        );
+    }
+
+    /// A grid spacing and an offset for a round.
+    fn scale(round: usize) -> (f64, f64) {
+        (
+            [1.0, 0.01, 1e-7, 3.0e5][round % 4],
+            [0.0, 0.3, -17.25, 1e6][(round / 4) % 4],
+        )
+    }
+
+    #[test]
+    fn fixed_width_incircle_agrees_with_big_integers() {
+        assert_agreement(11, |round, draw| {
             // Points of a grid of spacing h around an offset (exact differences, often
             // cocircular), or near a circle (nearly cocircular), or anywhere.
-            let h = [1.0, 0.01, 1e-7, 3.0e5][round % 4];
-            let offset = [0.0, 0.3, -17.25, 1e6][(round / 4) % 4];
+            let (h, offset) = scale(round);
             let mut point = |_| match round % 3 {
                 0 => [
                     offset + h * (draw(9) as f64 - 4.0),
@@ -402,49 +428,29 @@ mod tests {
                 ],
             };
             let [a, b, c, d] = [0, 1, 2, 3].map(&mut point);
-            let Some(sign) = incircle_fixed(&a, &b, &c, &d) else {
-                continue;
-            };
-            let expected = incircle_big(&a, &b, &c, &d);
-            assert_eq!(sign, expected, "{a:?} {b:?} {c:?} {d:?}");
-            decided += 1;
-            zeros += usize::from(expected == Sign::Zero);
-        }
-        assert!(
-            decided > 20000 && zeros > 500,
-            "{decided} decided, {zeros} zero"
-        );
+            Some((
+                incircle_fixed(&a, &b, &c, &d)?,
+                incircle_big(&a, &b, &c, &d),
+            ))
+        });
     }
 
     #[test]
     fn fixed_width_orient3d_agrees_with_big_integers() {
-        let mut state = 13;
-        let (mut decided, mut zeros) = (0, 0);
-        for round in 0..40000 {
-            let mut draw = |n: u64| next(&mut state) % n;
+        assert_agreement(13, |round, draw| {
             // Points of a grid of spacing h around an offset (often coplanar), points with
             // decimal coordinates (inexact differences), or anywhere.
-            let h = [1.0, 0.01, 1e-7, 3.0e5][round % 4];
-            let offset = [0.0, 0.3, -17.25, 1e6][(round / 4) % 4];
+            let (h, offset) = scale(round);
             let mut point = |_| match round % 3 {
                 0 => [0, 1, 2].map(|_| offset + h * (draw(5) as f64 - 2.0)),
                 1 => [0, 1, 2].map(|_| (draw(2000) as f64 - 1000.0) / 1e4),
                 _ => [0, 1, 2].map(|_| offset + h * (draw(1 << 30) as f64 / (1 << 20) as f64)),
             };
             let [a, b, c, d] = [0, 1, 2, 3].map(&mut point);
-            let Some(sign) = orient3d_fixed(&a, &b, &c, &d) else {
-                continue;
-            };
             let [ia, ib, ic, id] = integers::<3, 4>([&a, &b, &c, &d], None);
             let expected = super::sign(&det3(&[sub(&ib, &ia), sub(&ic, &ia), sub(&id, &ia)]));
-            assert_eq!(sign, expected, "{a:?} {b:?} {c:?} {d:?}");
-            decided += 1;
-            zeros += usize::from(expected == Sign::Zero);
-        }
-        assert!(
-            decided > 20000 && zeros > 500,
-            "{decided} decided, {zeros} zero"
-        );
+            Some((orient3d_fixed(&a, &b, &c, &d)?, expected))
+        });
     }
 
     #[test]
