@@ -1,12 +1,12 @@
 //! The exact stage: called only when a filter cannot certify a sign.
 //!
-//! The in-circle and orient3d tests first try 256-bit integers when the coordinates are
-//! integers of one power of two spanning few bits ([`fixed_integers`]): near-degenerate tests
-//! on nearby points, grids and decimal inputs above all, are decided there several times
-//! faster than by the expansions. Otherwise orient2d, orient3d and in-circle use Shewchuk's
-//! adaptive expansions (the `robust` crate) whenever those are exact for the given
-//! coordinates, and big integers otherwise. The in-sphere, weighted and coplanar predicates
-//! always use big integers.
+//! The in-circle, orient3d and in-sphere tests first try fixed-width integers (256 bits, 384
+//! for the in-sphere) when the coordinates are integers of one power of two spanning at most
+//! 61 bits ([`fixed_integers`]): near-degenerate tests on nearby points, grids and decimal
+//! inputs above all, are decided there many times faster than by the expansions or big
+//! integers. Otherwise orient2d, orient3d and in-circle use Shewchuk's adaptive expansions
+//! (the `robust` crate) whenever those are exact for the given coordinates, and big integers
+//! otherwise; the in-sphere, weighted and coplanar predicates use big integers.
 //!
 //! Shewchuk's expansion arithmetic is exact as long as no operation underflows or overflows. For
 //! a predicate of degree `k` (2 for orient2d, 3 for orient3d, 4 for incircle),
@@ -111,6 +111,53 @@ fn orient3d_fixed(a: &Point, b: &Point, c: &Point, d: &Point) -> Option<Sign> {
     Some(wide_sign(det))
 }
 
+/// [`insphere`] in fixed-width integers, when the fifteen coordinates are
+/// [`fixed_integers`]: the rows `p - e` are then below `2^62`, their lifted coordinates below
+/// `2^126` and 2 by 2 minors below `2^125` in `i128`, their 3 by 3 minors below `2^189` in
+/// 256 bits, and the 4 by 4 determinant (expanded as the filter does) below `2^317` in 384
+/// bits. `None` when the coordinates do not qualify.
+fn insphere_fixed(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Option<Sign> {
+    let points = [a, b, c, d, e];
+    let x: [i64; 15] = fixed_integers(std::array::from_fn(|k| points[k / 3][k % 3]))?;
+    let rows: [[i64; 3]; 4] =
+        std::array::from_fn(|i| std::array::from_fn(|k| x[3 * i + k] - x[12 + k]));
+    let lift = |r: &[i64; 3]| product(r[0], r[0]) + product(r[1], r[1]) + product(r[2], r[2]);
+    let minor = |p: &[i64; 3], q: &[i64; 3]| product(p[0], q[1]) - product(q[0], p[1]);
+    let minor3 = |p: &[i64; 3], q: &[i64; 3], r: &[i64; 3]| {
+        [
+            wide_product(i128::from(p[2]), minor(q, r)),
+            wide_product(-i128::from(q[2]), minor(p, r)),
+            wide_product(i128::from(r[2]), minor(p, q)),
+        ]
+        .into_iter()
+        .fold((0i128, 0u128), wide_sum)
+    };
+    let [ra, rb, rc, rd] = &rows;
+    // (ld*abc - lc*abd) + (lb*acd - la*bcd), the translated determinant, is -insphere.
+    let terms = [
+        (lift(rd), minor3(ra, rb, rc), true),
+        (lift(rc), minor3(ra, rb, rd), false),
+        (lift(rb), minor3(ra, rc, rd), true),
+        (lift(ra), minor3(rb, rc, rd), false),
+    ];
+    let det = terms
+        .into_iter()
+        .map(|(l, m, plus)| {
+            let term = lift_times_minor(l, m);
+            if plus {
+                term
+            } else {
+                negate(term)
+            }
+        })
+        .fold([0u128; 3], add_limbs);
+    Some(match det {
+        [0, 0, 0] => Sign::Zero,
+        [_, _, top] if (top as i128) < 0 => Sign::Positive,
+        _ => Sign::Negative,
+    })
+}
+
 /// The coordinates as integers `X` of one power of two, `x = X 2^e`, when all are finite and
 /// `|X| < 2^61` (they span at most 61 bits, zeros aside): differences of two are below `2^62`.
 /// The predicates are homogeneous, so the sign of a determinant of such differences is that
@@ -160,20 +207,68 @@ fn wide_sign(x: (i128, u128)) -> Sign {
 
 /// `a b` as a 256-bit two's complement integer `(high, low)`, for `|a|, |b| < 2^126`.
 fn wide_product(a: i128, b: i128) -> (i128, u128) {
+    let (high, low) = unsigned_product(a.unsigned_abs(), b.unsigned_abs());
+    if (a < 0) != (b < 0) {
+        let [low, high] = negate([low, high]);
+        (high as i128, low)
+    } else {
+        (high as i128, low)
+    }
+}
+
+/// `x y` as `(high, low)` 128-bit halves.
+fn unsigned_product(x: u128, y: u128) -> (u128, u128) {
     const HALF: u128 = u64::MAX as u128;
-    let (x, y) = (a.unsigned_abs(), b.unsigned_abs());
     let (x1, x0, y1, y0) = (x >> 64, x & HALF, y >> 64, y & HALF);
     let (cross0, cross1) = (x0 * y1, x1 * y0);
     let (low, carry0) = (x0 * y0).overflowing_add(cross0 << 64);
     let (low, carry1) = low.overflowing_add(cross1 << 64);
+    // The true high half is below 2^128 and every term is nonnegative: no overflow.
     let high = x1 * y1 + (cross0 >> 64) + (cross1 >> 64) + u128::from(carry0) + u128::from(carry1);
-    if (a < 0) != (b < 0) {
-        // Two's complement negation of (high, low).
-        let low = (!low).wrapping_add(1);
-        let high = (!high).wrapping_add(u128::from(low == 0));
-        (high as i128, low)
+    (high, low)
+}
+
+/// Two's complement negation of a little-endian multi-limb integer.
+fn negate<const N: usize>(x: [u128; N]) -> [u128; N] {
+    let mut out = x.map(|limb| !limb);
+    for limb in &mut out {
+        let (sum, carry) = limb.overflowing_add(1);
+        *limb = sum;
+        if !carry {
+            break;
+        }
+    }
+    out
+}
+
+/// The sum of two little-endian multi-limb two's complement integers, modulo `2^(128 N)`.
+fn add_limbs<const N: usize>(x: [u128; N], y: [u128; N]) -> [u128; N] {
+    let mut carry = false;
+    std::array::from_fn(|k| {
+        let (sum, c1) = x[k].overflowing_add(y[k]);
+        let (sum, c2) = sum.overflowing_add(u128::from(carry));
+        carry = c1 || c2;
+        sum
+    })
+}
+
+/// `l m` as a 384-bit two's complement integer (three little-endian limbs), for
+/// `0 <= l < 2^126` and a 256-bit `m` (as [`wide_product`] gives it) with `|m| < 2^254`.
+fn lift_times_minor(l: i128, (high, low): (i128, u128)) -> [u128; 3] {
+    let magnitude = if high < 0 {
+        negate([low, high as u128])
     } else {
-        (high as i128, low)
+        [low, high as u128]
+    };
+    let l = l.unsigned_abs();
+    let (p1, p0) = unsigned_product(l, magnitude[0]);
+    let (q1, q0) = unsigned_product(l, magnitude[1]);
+    let (middle, carry) = p1.overflowing_add(q0);
+    let product = [p0, middle, q1 + u128::from(carry)];
+    if high < 0 {
+        negate(product)
+    } else {
+        product
     }
 }
 
@@ -203,6 +298,9 @@ pub(super) fn orient3d(a: &Point, b: &Point, c: &Point, d: &Point) -> Sign {
 #[cold]
 #[inline(never)]
 pub(super) fn insphere(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
+    if let Some(sign) = insphere_fixed(a, b, c, d, e) {
+        return sign;
+    }
     // Big integers, not the expansions: `robust`'s in-sphere zeroes arrays of thousands of
     // doubles on every call, which makes it several times slower here (fandisk: 147,000
     // instructions a call against 22,000).
@@ -454,6 +552,30 @@ mod tests {
     }
 
     #[test]
+    fn fixed_width_insphere_agrees_with_big_integers() {
+        assert_agreement(17, |round, draw| {
+            // Points of a grid (often cospherical), points with decimal coordinates, or
+            // anywhere.
+            let (h, offset) = scale(round);
+            let mut point = |_| match round % 3 {
+                0 => [0, 1, 2].map(|_| offset + h * (draw(3) as f64 - 1.0)),
+                1 => [0, 1, 2].map(|_| (draw(200) as f64 - 100.0) / 1e3),
+                _ => [0, 1, 2].map(|_| offset + h * (draw(1 << 30) as f64 / (1 << 20) as f64)),
+            };
+            let [a, b, c, d, e] = [0, 1, 2, 3, 4].map(&mut point);
+            let weightless = |p: &Point| [p[0], p[1], p[2], 0.0];
+            let expected = power_test(
+                &weightless(&a),
+                &weightless(&b),
+                &weightless(&c),
+                &weightless(&d),
+                &weightless(&e),
+            );
+            Some((insphere_fixed(&a, &b, &c, &d, &e)?, expected))
+        });
+    }
+
+    #[test]
     fn wide_products_and_sums() {
         let big = (1i128 << 125) - 3;
         for (a, b) in [
@@ -473,5 +595,26 @@ mod tests {
         assert_eq!(sum, (0, 0));
         assert_eq!(wide_sum((0, u128::MAX), (0, 1)), (1, 0));
         assert_eq!(wide_sum((-1, u128::MAX), (0, 1)), (0, 0));
+        // 384-bit products of a lift and a 256-bit minor, and their sums.
+        let limbs = |x: [u128; 3]| {
+            let top = num_bigint::BigInt::from(x[2] as i128) << 256;
+            top + (num_bigint::BigInt::from(x[1]) << 128) + num_bigint::BigInt::from(x[0])
+        };
+        let lift = (1i128 << 126) - 1;
+        for m in [
+            wide_product(big, big),
+            wide_product(-big, big),
+            wide_product(big, -7),
+            (0, 5),
+            (-1, u128::MAX),
+        ] {
+            let minor = (num_bigint::BigInt::from(m.0) << 128) + num_bigint::BigInt::from(m.1);
+            for l in [lift, 1, 0] {
+                let got = lift_times_minor(l, m);
+                assert_eq!(limbs(got), num_bigint::BigInt::from(l) * &minor, "{l} * {m:?}");
+                let sum = add_limbs(got, negate(got));
+                assert_eq!(sum, [0; 3]);
+            }
+        }
     }
 }

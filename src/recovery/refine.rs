@@ -196,9 +196,8 @@ impl Refiner<'_> {
             return Ok(false);
         }
         let s = self.mesh.add_point(c);
-        let cone: Vec<[u32; 4]> = cone.into_iter().map(|[a, b, d]| [a, b, d, s]).collect();
         let component = self.regions.component[start as usize];
-        let Some(created) = self.mesh.try_replace(&cavity, &cone)? else {
+        let Some(created) = self.mesh.try_replace_by_cone(&cavity, s, &cone)? else {
             self.mesh.pop_point();
             return Ok(false);
         };
@@ -316,23 +315,24 @@ impl Refiner<'_> {
     /// Delaunay mesh it never is (the circumsphere is empty); where the surface or unflippable
     /// facets keep the mesh from being Delaunay, this keeps every new edge at least as long as
     /// an existing one, so refinement cannot cascade toward a point close to the surface.
-    fn too_close(&self, t: u32, cone: &[[u32; 3]], c: &Point) -> bool {
+    fn too_close(&self, t: u32, cone: &[([u32; 3], u32)], c: &Point) -> bool {
         let q = self.mesh.tets.vertices(t).map(|v| *self.mesh.point(v));
         let shortest = crate::quality::shortest_edge(&q);
         cone.iter()
-            .flatten()
+            .flat_map(|(f, _)| f)
             .any(|&v| dist(c, self.mesh.point(v)) < shortest)
     }
 
     /// Shrinks `cavity` (always keeping `start`) until every boundary facet sees `c` on its
     /// positive side and every cavity vertex is on the boundary; returns the boundary facets,
-    /// or `None` when `start` itself would have to go.
+    /// each with the facet glued to it outside, or `None` when `start` itself would have to
+    /// go.
     fn star_shaped(
         &mut self,
         start: u32,
         cavity: &mut Vec<u32>,
         c: &Point,
-    ) -> Option<Vec<[u32; 3]>> {
+    ) -> Option<Vec<([u32; 3], u32)>> {
         loop {
             for &u in cavity.iter() {
                 self.mesh.tets.mark[u as usize] = 7;
@@ -347,7 +347,7 @@ impl Refiner<'_> {
                     let f = self.mesh.facet(u, i);
                     let [a, b, d] = f.map(|v| *self.mesh.point(v));
                     if orient3d(&a, &b, &d, c) == Sign::Positive {
-                        facets.push(f);
+                        facets.push((f, self.mesh.tets.glued(u, i)));
                     } else {
                         blocked.push(u);
                     }
@@ -358,7 +358,7 @@ impl Refiner<'_> {
                     self.mesh.tets.mark[u as usize] = 0;
                 }
                 // Every cavity vertex must stay, on a boundary facet.
-                let mut on_boundary: Vec<u32> = facets.iter().flatten().copied().collect();
+                let mut on_boundary: Vec<u32> = facets.iter().flat_map(|(f, _)| *f).collect();
                 let mut all: Vec<u32> = cavity
                     .iter()
                     .flat_map(|&u| self.mesh.tets.vertices(u))

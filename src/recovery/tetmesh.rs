@@ -15,6 +15,7 @@ use rustc_hash::FxHashSet;
 use super::flips::Protected;
 use crate::error::{Error, Result};
 use crate::predicates::{orient3d, Point, Sign};
+use crate::triangulation::edge_table::EdgeTable;
 use crate::triangulation::tets::{Tets, FACE, INFINITE};
 use crate::triangulation::Triangulation;
 
@@ -39,6 +40,8 @@ pub struct TetMesh {
     vertex_tet: Vec<u32>,
     /// The search buffer of [`TetMesh::search_ball`].
     scratch: Vec<u32>,
+    /// The edge table of [`TetMesh::try_replace_by_cone`].
+    edges: EdgeTable,
     /// Points from this id on were added after the Delaunay triangulation.
     first_added: u32,
 }
@@ -65,6 +68,7 @@ impl TetMesh {
             points,
             tets,
             scratch: Vec::new(),
+            edges: EdgeTable::default(),
             first_added: 0,
         };
         mesh.first_added = mesh.points.len() as u32;
@@ -335,6 +339,24 @@ impl TetMesh {
         }
     }
 
+    /// Replaces the tetrahedra `old` by the cone from vertex `s` over their boundary: the
+    /// tetrahedra `[a, b, d, s]` of the boundary facets `(a, b, d)` in `cone`, each given with
+    /// the facet glued to it outside. The facets through `s` are paired by their edge opposite
+    /// `s` in a hash table (not by sorting `4n` facets and the boundary). `None` (nothing
+    /// changed) when the cone's facets through `s` do not pair up.
+    pub fn try_replace_by_cone(
+        &mut self,
+        old: &[u32],
+        s: u32,
+        cone: &[([u32; 3], u32)],
+    ) -> Result<Option<Vec<u32>>> {
+        let new: Vec<[u32; 4]> = cone.iter().map(|&([a, b, d], _)| [a, b, d, s]).collect();
+        match cone_gluing(&mut self.edges, &new, cone) {
+            Some(gluing) => self.apply(old, &new, &gluing).map(Some),
+            None => Ok(None),
+        }
+    }
+
     fn apply(&mut self, old: &[u32], new: &[[u32; 4]], gluing: &[[Glue; 4]]) -> Result<Vec<u32>> {
         for &t in old {
             self.tets.kill(t);
@@ -424,6 +446,32 @@ enum Glue {
     Outer(u32),
     /// To facet `j` of new tetrahedron `m`.
     Inner(usize, usize),
+}
+
+/// The gluing of the cone `new` (`[a, b, d, s]`, facet 3 glued outside as `cone` says): facet
+/// `i < 3` of a tetrahedron holds `s` and the edge of its base without vertex `i`, shared
+/// with exactly one other tetrahedron of the cone (the cavity is star-shaped from `s`, its
+/// boundary a sphere); `None` when the edges do not pair up.
+fn cone_gluing(
+    edges: &mut EdgeTable,
+    new: &[[u32; 4]],
+    cone: &[([u32; 3], u32)],
+) -> Option<Vec<[Glue; 4]>> {
+    edges.reset(3 * new.len());
+    let mut gluing: Vec<[Glue; 4]> = cone.iter().map(|&(_, f)| [Glue::Outer(f); 4]).collect();
+    let mut pairs = 0;
+    for (n, q) in new.iter().enumerate() {
+        for i in 0..3 {
+            let (x, y) = (q[(i + 1) % 3], q[(i + 2) % 3]);
+            if let Some(other) = edges.take_or_insert(x, y, (4 * n + i) as u32) {
+                let (m, j) = (other as usize / 4, other as usize % 4);
+                gluing[n][i] = Glue::Inner(m, j);
+                gluing[m][j] = Glue::Inner(n, i);
+                pairs += 1;
+            }
+        }
+    }
+    (2 * pairs == 3 * new.len()).then_some(gluing)
 }
 
 /// The gluing of the new tetrahedra's facets, or an internal error naming the first facet

@@ -8,6 +8,7 @@
 //! contain `p` and the boundary edge `{x, y}` meet there. Nothing is allocated per insertion
 //! once the scratch buffers have grown to the largest cavity.
 
+use super::edge_table::EdgeTable;
 use super::tets::{FACE, INFINITE};
 use super::{PointState, Triangulation};
 use crate::error::{Error, Result};
@@ -30,68 +31,6 @@ pub struct Scratch {
     pub(super) new_tets: Vec<u32>,
     edges: EdgeTable,
 }
-
-/// Open-addressing table from cavity-boundary edges to the facet waiting for its twin,
-/// invalidated by a generation stamp. An edge is keyed without direction: the two facets
-/// that share it meet in one probe sequence, the first stores, the second takes.
-#[derive(Default)]
-struct EdgeTable {
-    slots: Vec<EdgeSlot>,
-    stamp: u32,
-    shift: u32,
-}
-
-#[derive(Clone, Copy, Default)]
-struct EdgeSlot {
-    key: u64,
-    facet: u32,
-    stamp: u32,
-}
-
-impl EdgeTable {
-    /// Empties the table, sized for `entries` keys at load factor at most 1/2.
-    fn reset(&mut self, entries: usize) {
-        let want = (2 * entries).next_power_of_two().max(64);
-        if want > self.slots.len() {
-            self.slots = vec![EdgeSlot::default(); want];
-            self.stamp = 0;
-            self.shift = 64 - want.trailing_zeros();
-        }
-        self.stamp = self.stamp.wrapping_add(1);
-        if self.stamp == 0 {
-            self.slots.fill(EdgeSlot::default());
-            self.stamp = 1;
-        }
-    }
-
-    /// The facet already stored under edge `{a, b}`, or `None` after storing `facet` there.
-    #[inline]
-    fn take_or_insert(&mut self, a: u32, b: u32, facet: u32) -> Option<u32> {
-        let key = (u64::from(a.min(b)) << 32) | u64::from(a.max(b));
-        let mask = self.slots.len() - 1;
-        let mut h = (key.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> self.shift) as usize;
-        loop {
-            let slot = &mut self.slots[h];
-            if slot.stamp != self.stamp {
-                *slot = EdgeSlot {
-                    key,
-                    facet,
-                    stamp: self.stamp,
-                };
-                return None;
-            }
-            if slot.key == key {
-                // A tombstone keeps the probe sequences through this slot intact.
-                slot.key = TOMBSTONE;
-                return Some(slot.facet);
-            }
-            h = (h + 1) & mask;
-        }
-    }
-}
-
-/// No edge has this key: it would join the infinite vertex to itself.
-const TOMBSTONE: u64 = u64::MAX;
 
 /// Where a walk ended.
 pub(super) enum Located {

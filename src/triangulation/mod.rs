@@ -16,6 +16,7 @@
 //! facets (local Delaunay/regularity, equivalent to the global property). `validate` checks
 //! them all exactly.
 
+pub mod edge_table;
 mod incremental;
 mod insert;
 mod remove;
