@@ -611,7 +611,11 @@ mod tests {
             let minor = (num_bigint::BigInt::from(m.0) << 128) + num_bigint::BigInt::from(m.1);
             for l in [lift, 1, 0] {
                 let got = lift_times_minor(l, m);
-                assert_eq!(limbs(got), num_bigint::BigInt::from(l) * &minor, "{l} * {m:?}");
+                assert_eq!(
+                    limbs(got),
+                    num_bigint::BigInt::from(l) * &minor,
+                    "{l} * {m:?}"
+                );
                 let sum = add_limbs(got, negate(got));
                 assert_eq!(sum, [0; 3]);
             }

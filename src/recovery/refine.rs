@@ -38,6 +38,10 @@ use crate::triangulation::tets::INFINITE;
 /// Steps of a point-location walk before it gives up.
 const WALK: usize = 1 << 16;
 
+/// The mark of a tetrahedron waiting on the Lawson stack (other searches mark 1 to 8 and
+/// clear their marks).
+const WAITING: u8 = 9;
+
 /// Why a point is tried: the checks differ (TetGen's `qflag`).
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Split {
@@ -66,6 +70,8 @@ pub fn refine(
         ratio,
         queue: VecDeque::new(),
         flips_left: 0,
+        seen: Vec::new(),
+        cavities: 0,
     };
     refiner.run(n_input)
 }
@@ -81,6 +87,9 @@ struct Refiner<'a> {
     queue: VecDeque<(u32, [u32; 4])>,
     /// Flips Lawson's pass may still make.
     flips_left: usize,
+    /// Per vertex, the last cavity that counted it (see [`Refiner::star_shaped`]).
+    seen: Vec<u32>,
+    cavities: u32,
 }
 
 impl Refiner<'_> {
@@ -357,17 +366,10 @@ impl Refiner<'_> {
                 for &u in cavity.iter() {
                     self.mesh.tets.mark[u as usize] = 0;
                 }
-                // Every cavity vertex must stay, on a boundary facet.
-                let mut on_boundary: Vec<u32> = facets.iter().flat_map(|(f, _)| *f).collect();
-                let mut all: Vec<u32> = cavity
-                    .iter()
-                    .flat_map(|&u| self.mesh.tets.vertices(u))
-                    .collect();
-                for set in [&mut on_boundary, &mut all] {
-                    set.sort_unstable();
-                    set.dedup();
-                }
-                return (on_boundary.len() == all.len()).then_some(facets);
+                // Every cavity vertex must stay, on a boundary facet. The boundary, every
+                // facet seeing `c` inside, is a sphere around it: `F / 2 + 2` vertices.
+                let on_boundary = facets.len() / 2 + 2;
+                return (self.distinct_vertices(cavity) == on_boundary).then_some(facets);
             }
             for &u in &blocked {
                 self.mesh.tets.mark[u as usize] = 0;
@@ -382,6 +384,27 @@ impl Refiner<'_> {
         }
     }
 
+    /// The number of distinct vertices of the tetrahedra `cavity`.
+    fn distinct_vertices(&mut self, cavity: &[u32]) -> usize {
+        self.seen.resize(self.mesh.points.len(), 0);
+        self.cavities += 1;
+        if self.cavities == u32::MAX {
+            self.seen.fill(0);
+            self.cavities = 1;
+        }
+        let mut count = 0;
+        for &u in cavity {
+            for v in self.mesh.tets.vertices(u) {
+                let seen = &mut self.seen[v as usize];
+                if *seen != self.cavities {
+                    *seen = self.cavities;
+                    count += 1;
+                }
+            }
+        }
+        count
+    }
+
     /// Keeps the marked tetrahedra of `cavity` reachable from `start` through marked ones;
     /// clears the marks.
     fn reachable(&mut self, start: u32, cavity: &mut Vec<u32>) {
@@ -394,34 +417,53 @@ impl Refiner<'_> {
 
     /// Lawson's flips from the tetrahedra `start`, within the kept regions and never across
     /// an input triangle; returns the live tetrahedra among `start` and those flips made.
+    ///
+    /// A facet between two tetrahedra waiting on the stack is tested once, from the second
+    /// one taken off it (the test is symmetric: either apex is inside the other tetrahedron's
+    /// circumsphere exactly when the other is); marks tell waiting tetrahedra from the others.
     fn lawson(&mut self, start: Vec<u32>) -> Result<Vec<u32>> {
         let mut touched = start.clone();
-        let mut stack: Vec<(u32, [u32; 4])> = start
-            .iter()
-            .map(|&t| (t, self.mesh.tets.vertices(t)))
-            .collect();
+        let mut stack: Vec<(u32, [u32; 4])> = Vec::with_capacity(start.len());
+        for &t in &start {
+            self.wait(&mut stack, t);
+        }
         while let Some((t, quad)) = stack.pop() {
             if !self.mesh.tets.is_live(t) || self.mesh.tets.vertices(t) != quad {
                 continue;
             }
+            self.mesh.tets.mark[t as usize] = 0;
             for i in 0..4 {
                 if self.flips_left == 0 {
                     break;
+                }
+                if self.mesh.tets.mark[self.mesh.tets.neighbor(t, i) as usize] == WAITING {
+                    continue;
                 }
                 if let Some(created) = self.flip_if_not_delaunay(t, i)? {
                     self.flips_left -= 1;
                     let component = self.regions.component[t as usize];
                     self.regions.assign(&created, component);
-                    stack.extend(created.iter().map(|&u| (u, self.mesh.tets.vertices(u))));
+                    for &u in &created {
+                        self.wait(&mut stack, u);
+                    }
                     touched.extend_from_slice(&created);
                     break;
                 }
             }
         }
+        for &t in &touched {
+            self.mesh.tets.mark[t as usize] = 0;
+        }
         touched.sort_unstable();
         touched.dedup();
         touched.retain(|&t| self.mesh.tets.is_live(t));
         Ok(touched)
+    }
+
+    /// Puts `t` on the Lawson stack, marked as waiting.
+    fn wait(&mut self, stack: &mut Vec<(u32, [u32; 4])>, t: u32) {
+        self.mesh.tets.mark[t as usize] = WAITING;
+        stack.push((t, self.mesh.tets.vertices(t)));
     }
 
     /// Flips facet `i` of `t` away (2-3, or 3-2 around one of its edges) when the apex
