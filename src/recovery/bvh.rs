@@ -64,6 +64,8 @@ struct Node {
 /// The hierarchy over items `0..n` given by their boxes.
 #[derive(Clone, Debug)]
 pub struct Bvh {
+    /// The items' boxes in the order of `order` (the box of item `order[k]` is `boxes[k]`), so
+    /// that a node's boxes are contiguous.
     boxes: Vec<Aabb>,
     /// Item numbers, each node's items contiguous.
     order: Vec<usize>,
@@ -91,6 +93,7 @@ impl Bvh {
     fn build(&mut self) {
         let codes = morton_codes(&self.boxes);
         self.order.sort_unstable_by_key(|&i| (codes[i], i));
+        self.boxes = self.order.iter().map(|&i| self.boxes[i]).collect();
         self.nodes.push(self.leaf(0, self.order.len()));
         let mut pending = vec![0];
         while let Some(index) = pending.pop() {
@@ -119,7 +122,7 @@ impl Bvh {
     /// A node over `order[start..end]`, its bounds not yet known.
     fn leaf(&self, start: usize, end: usize) -> Node {
         Node {
-            bounds: self.boxes[self.order[start]],
+            bounds: self.boxes[start],
             start,
             end,
             children: None,
@@ -128,9 +131,9 @@ impl Bvh {
 
     /// The box holding the items `order[start..end]`.
     fn items_bounds(&self, start: usize, end: usize) -> Aabb {
-        let mut bounds = self.boxes[self.order[start]];
-        for &item in &self.order[start + 1..end] {
-            bounds.include(&self.boxes[item]);
+        let mut bounds = self.boxes[start];
+        for item in &self.boxes[start + 1..end] {
+            bounds.include(item);
         }
         bounds
     }
@@ -140,27 +143,34 @@ impl Bvh {
         if self.nodes.is_empty() {
             return;
         }
+        // Pairs of distinct nodes enter only when their boxes overlap.
         let mut pending = vec![(0, 0)];
+        let push = |pending: &mut Vec<(usize, usize)>, a: usize, b: usize| {
+            if a == b || self.nodes[a].bounds.overlaps(&self.nodes[b].bounds) {
+                pending.push((a, b));
+            }
+        };
         while let Some((a, b)) = pending.pop() {
             let (na, nb) = (&self.nodes[a], &self.nodes[b]);
-            if a == b {
-                match na.children {
-                    Some([l, r]) => pending.extend([(l, l), (r, r), (l, r)]),
-                    None => self.leaf_pairs(a, a, &mut visit),
-                }
-                continue;
-            }
-            if !na.bounds.overlaps(&nb.bounds) {
-                continue;
-            }
             match (na.children, nb.children) {
-                (None, None) => self.leaf_pairs(a, b, &mut visit),
-                (Some([l, r]), None) => pending.extend([(l, b), (r, b)]),
-                (None, Some([l, r])) => pending.extend([(a, l), (a, r)]),
-                (Some([l, r]), Some(_)) if na.end - na.start >= nb.end - nb.start => {
-                    pending.extend([(l, b), (r, b)])
+                (Some([l, r]), _) if a == b => {
+                    push(&mut pending, l, l);
+                    push(&mut pending, r, r);
+                    push(&mut pending, l, r);
                 }
-                (Some(_), Some([l, r])) => pending.extend([(a, l), (a, r)]),
+                (None, None) => self.leaf_pairs(a, b, &mut visit),
+                (Some([l, r]), None) => {
+                    push(&mut pending, l, b);
+                    push(&mut pending, r, b);
+                }
+                (Some([l, r]), Some(_)) if na.end - na.start >= nb.end - nb.start => {
+                    push(&mut pending, l, b);
+                    push(&mut pending, r, b);
+                }
+                (_, Some([l, r])) => {
+                    push(&mut pending, a, l);
+                    push(&mut pending, a, r);
+                }
             }
         }
     }
@@ -180,10 +190,9 @@ impl Bvh {
             }
             match node.children {
                 Some([l, r]) => pending.extend([l, r]),
-                None => self.order[node.start..node.end]
-                    .iter()
-                    .filter(|&&i| self.boxes[i].overlaps(&point))
-                    .for_each(|&i| visit(i)),
+                None => (node.start..node.end)
+                    .filter(|&k| self.boxes[k].overlaps(&point))
+                    .for_each(|k| visit(self.order[k])),
             }
         }
     }
@@ -192,14 +201,15 @@ impl Bvh {
     /// `i < j` in the leaf when `a` and `b` are the same leaf.
     fn leaf_pairs(&self, a: usize, b: usize, visit: &mut impl FnMut(usize, usize)) {
         let (na, nb) = (&self.nodes[a], &self.nodes[b]);
-        for (k, &i) in self.order[na.start..na.end].iter().enumerate() {
+        for p in na.start..na.end {
             let others = if a == b {
-                &self.order[na.start + k + 1..na.end]
+                p + 1..na.end
             } else {
-                &self.order[nb.start..nb.end]
+                nb.start..nb.end
             };
-            for &j in others {
-                if self.boxes[i].overlaps(&self.boxes[j]) {
+            for q in others {
+                if self.boxes[p].overlaps(&self.boxes[q]) {
+                    let (i, j) = (self.order[p], self.order[q]);
                     visit(i.min(j), i.max(j));
                 }
             }
@@ -245,4 +255,68 @@ fn spread(x: u64) -> u64 {
     x = (x | x << 8) & 0x100f_00f0_0f00_f00f;
     x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
     (x | x << 2) & 0x1249_2492_4924_9249
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// Random boxes, small and large, some degenerate (points) and some repeated.
+    fn boxes(n: usize, seed: u64) -> Vec<Aabb> {
+        let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+        let mut out: Vec<Aabb> = (0..n)
+            .map(|_| {
+                let size = if rng.gen_bool(0.1) { 0.3 } else { 0.02 };
+                let corner = [0, 1, 2].map(|_| rng.gen_range(0.0..1.0));
+                let far = corner.map(|x| {
+                    x + if rng.gen_bool(0.05) {
+                        0.0
+                    } else {
+                        size * rng.gen::<f64>()
+                    }
+                });
+                Aabb::of_points(&[corner, far])
+            })
+            .collect();
+        out.extend_from_within(..n / 10);
+        out
+    }
+
+    #[test]
+    fn overlapping_pairs_are_those_of_brute_force() {
+        for (n, seed) in [(0, 1), (1, 2), (7, 3), (500, 4)] {
+            let boxes = boxes(n, seed);
+            let mut found = Vec::new();
+            Bvh::new(boxes.clone()).for_each_overlapping_pair(|i, j| found.push((i, j)));
+            found.sort_unstable();
+            let mut expected = Vec::new();
+            for i in 0..boxes.len() {
+                for j in i + 1..boxes.len() {
+                    if boxes[i].overlaps(&boxes[j]) {
+                        expected.push((i, j));
+                    }
+                }
+            }
+            assert_eq!(found, expected, "{n} boxes");
+        }
+    }
+
+    #[test]
+    fn boxes_containing_a_point_are_those_of_brute_force() {
+        let boxes = boxes(500, 5);
+        let bvh = Bvh::new(boxes.clone());
+        let mut rng = rand::rngs::StdRng::seed_from_u64(6);
+        for _ in 0..200 {
+            let p = [0, 1, 2].map(|_| rng.gen_range(0.0..1.2));
+            let mut found = Vec::new();
+            bvh.for_each_containing(&p, |i| found.push(i));
+            found.sort_unstable();
+            let point = Aabb { lo: p, hi: p };
+            let expected: Vec<usize> = (0..boxes.len())
+                .filter(|&i| boxes[i].overlaps(&point))
+                .collect();
+            assert_eq!(found, expected);
+        }
+    }
 }
