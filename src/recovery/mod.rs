@@ -25,6 +25,7 @@
 //! region.
 
 mod bvh;
+mod by_vertex;
 mod classify;
 pub mod edges;
 pub mod faces;

@@ -12,6 +12,7 @@
 
 use rustc_hash::FxHashSet;
 
+use super::by_vertex::ByVertex;
 use super::flips::Protected;
 use crate::error::{Error, Result};
 use crate::predicates::{orient3d, Point, Sign};
@@ -216,12 +217,12 @@ impl TetMesh {
 
     /// The protected edges (sorted pairs) and facets (sorted triples) that are in the mesh,
     /// found in one pass over the tetrahedra. The protected sets are looked up through lists
-    /// by smallest vertex ([`ByFirst`]): a tetrahedron's edges share few vertices, and these
+    /// by smallest vertex ([`ByVertex`]): a tetrahedron's edges share few vertices, and these
     /// short lists stay in cache where the hash sets' probes would not.
     pub fn present(&self, protected: &Protected) -> (FxHashSet<[u32; 2]>, FxHashSet<Key>) {
         let n = self.points.len();
-        let edge_lists = ByFirst::new(n, protected.edges.iter().map(|&[a, b]| (a, b)));
-        let facet_lists = ByFirst::new(n, protected.facets.iter().map(|&[a, b, c]| (a, [b, c])));
+        let edge_lists = ByVertex::new(n, protected.edges.iter().map(|&[a, b]| (a, b)));
+        let facet_lists = ByVertex::new(n, protected.facets.iter().map(|&[a, b, c]| (a, [b, c])));
         let mut edge_found = vec![false; edge_lists.items.len()];
         let mut facet_found = vec![false; facet_lists.items.len()];
         for t in self.tets.live() {
@@ -457,54 +458,6 @@ enum Glue {
     Outer(u32),
     /// To facet `j` of new tetrahedron `m`.
     Inner(usize, usize),
-}
-
-/// Items grouped by a vertex: the items of vertex `a` are `items[start[a]..start[a + 1]]`
-/// (a counting sort); vertices out of range (the infinite vertex) have none.
-struct ByFirst<T> {
-    start: Vec<u32>,
-    items: Vec<T>,
-}
-
-impl<T: Copy + Default + PartialEq> ByFirst<T> {
-    fn new(vertices: usize, pairs: impl Iterator<Item = (u32, T)> + Clone) -> Self {
-        let mut start = vec![0u32; vertices + 1];
-        for (a, _) in pairs.clone() {
-            start[a as usize + 1] += 1;
-        }
-        for k in 1..start.len() {
-            start[k] += start[k - 1];
-        }
-        let mut next = start.clone();
-        let mut items = vec![T::default(); start[vertices] as usize];
-        for (a, x) in pairs {
-            items[next[a as usize] as usize] = x;
-            next[a as usize] += 1;
-        }
-        ByFirst { start, items }
-    }
-
-    /// The index in `items` of `x` among the items of `a`.
-    fn position(&self, a: u32, x: &T) -> Option<usize> {
-        let a = a as usize;
-        if a + 1 >= self.start.len() {
-            return None;
-        }
-        let (from, to) = (self.start[a] as usize, self.start[a + 1] as usize);
-        self.items[from..to]
-            .iter()
-            .position(|y| y == x)
-            .map(|k| from + k)
-    }
-
-    /// The pairs `(a, item)` whose item is flagged in `flags` (indexed like `items`).
-    fn pairs<'a>(&'a self, flags: &'a [bool]) -> impl Iterator<Item = (u32, T)> + 'a {
-        (0..self.start.len() - 1).flat_map(move |a| {
-            (self.start[a] as usize..self.start[a + 1] as usize)
-                .filter(|&k| flags[k])
-                .map(move |k| (a as u32, self.items[k]))
-        })
-    }
 }
 
 /// The gluing of the cone `new` (`[a, b, d, s]`, facet 3 glued outside as `cone` says): facet

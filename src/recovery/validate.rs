@@ -18,6 +18,7 @@
 //! can be meshed and leaves the others out.
 
 use super::bvh::{Aabb, Bvh};
+use super::by_vertex::ByVertex;
 use crate::error::{Error, Result};
 use crate::predicates::{lex_cmp, orient2d, orient3d, Point, Sign};
 use crate::triangulation::MAX_COORDINATE;
@@ -84,16 +85,20 @@ fn check_coordinates(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> 
 /// Fails when two distinct vertices used by triangles have the same coordinates (the pair with
 /// the smallest indices is named).
 fn check_coincident(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> {
-    let mut used: Vec<u32> = triangles.iter().flatten().copied().collect();
-    used.sort_unstable();
-    used.dedup();
-    used.sort_unstable_by(|&i, &j| {
-        lex_cmp(&points[i as usize], &points[j as usize]).then(i.cmp(&j))
-    });
-    let pair = used
+    let mut used = vec![false; points.len()];
+    for &v in triangles.iter().flatten() {
+        used[v as usize] = true;
+    }
+    // The positions are copied next to their index: the sort reads no other array.
+    let mut sorted: Vec<(Point, u32)> = (0..points.len() as u32)
+        .filter(|&v| used[v as usize])
+        .map(|v| (points[v as usize], v))
+        .collect();
+    sorted.sort_unstable_by(|(p, i), (q, j)| lex_cmp(p, q).then(i.cmp(j)));
+    let pair = sorted
         .windows(2)
-        .filter(|w| lex_cmp(&points[w[0] as usize], &points[w[1] as usize]).is_eq())
-        .map(|w| (w[0], w[1]))
+        .filter(|w| lex_cmp(&w[0].0, &w[1].0).is_eq())
+        .map(|w| (w[0].1, w[1].1))
         .min();
     match pair {
         Some((i, j)) => Err(Error::invalid_input(format!(
@@ -189,54 +194,78 @@ fn corners<'a>(points: &'a [[f64; 3]], t: &[u32; 3]) -> [&'a Point; 3] {
 /// Fails when two triangles have the same three vertices, in any order (the pair with the
 /// smallest numbers is named).
 fn check_duplicates(triangles: &[[u32; 3]]) -> Result<()> {
-    let mut keys: Vec<([u32; 3], usize)> = triangles
-        .iter()
-        .enumerate()
-        .map(|(k, t)| {
+    // Triangles grouped by smallest vertex, each group sorted by the other two, then number.
+    let by_vertex = ByVertex::new(
+        vertex_count(triangles),
+        triangles.iter().enumerate().map(|(k, t)| {
             let mut key = *t;
             key.sort_unstable();
-            (key, k)
-        })
-        .collect();
-    keys.sort_unstable();
-    let pair = keys
-        .windows(2)
-        .filter(|w| w[0].0 == w[1].0)
-        .map(|w| (w[0].1, w[1].1))
-        .min();
+            (key[0], ((key[1], key[2]), k as u32))
+        }),
+    );
+    let mut pair: Option<(u32, u32)> = None;
+    let mut group = Vec::new();
+    for a in 0..by_vertex.vertices() {
+        group.clear();
+        group.extend_from_slice(by_vertex.of(a));
+        group.sort_unstable();
+        for w in group.windows(2).filter(|w| w[0].0 == w[1].0) {
+            let found = (w[0].1, w[1].1);
+            pair = Some(pair.map_or(found, |p| p.min(found)));
+        }
+    }
     match pair {
-        Some((i, j)) => Err(Error::invalid_input(format!(
-            "{} and triangle {} have the same vertices",
-            describe(i, &triangles[i]),
-            describe_short(j, &triangles[j])
-        ))),
+        Some((i, j)) => {
+            let (i, j) = (i as usize, j as usize);
+            Err(Error::invalid_input(format!(
+                "{} and triangle {} have the same vertices",
+                describe(i, &triangles[i]),
+                describe_short(j, &triangles[j])
+            )))
+        }
         None => Ok(()),
     }
+}
+
+/// One more than the largest vertex number the triangles use.
+fn vertex_count(triangles: &[[u32; 3]]) -> usize {
+    triangles
+        .iter()
+        .flatten()
+        .max()
+        .map_or(0, |&v| v as usize + 1)
 }
 
 /// Fails when an edge belongs to a single triangle (the one with the smallest number is named,
 /// then the smallest edge).
 fn check_closed(triangles: &[[u32; 3]]) -> Result<()> {
-    let mut edges: Vec<(u32, u32, usize)> = triangles
-        .iter()
-        .enumerate()
-        .flat_map(|(k, t)| {
-            [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])].map(|(a, b)| (a.min(b), a.max(b), k))
-        })
-        .collect();
-    edges.sort_unstable();
-    let same = |x: &(u32, u32, usize), y: &(u32, u32, usize)| (x.0, x.1) == (y.0, y.1);
-    let open = (0..edges.len())
-        .filter(|&i| {
-            (i == 0 || !same(&edges[i - 1], &edges[i]))
-                && (i + 1 == edges.len() || !same(&edges[i], &edges[i + 1]))
-        })
-        .map(|i| (edges[i].2, edges[i].0, edges[i].1))
-        .min();
+    // Edges grouped by smaller end, each group sorted by the other end, then triangle.
+    let by_vertex = ByVertex::new(
+        vertex_count(triangles),
+        triangles.iter().enumerate().flat_map(|(k, t)| {
+            [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])]
+                .map(|(a, b)| (a.min(b), (a.max(b), k as u32)))
+        }),
+    );
+    let mut open: Option<(u32, u32, u32)> = None;
+    let mut group = Vec::new();
+    for a in 0..by_vertex.vertices() {
+        group.clear();
+        group.extend_from_slice(by_vertex.of(a));
+        group.sort_unstable();
+        for (i, &(b, k)) in group.iter().enumerate() {
+            let alone =
+                (i == 0 || group[i - 1].0 != b) && (i + 1 == group.len() || group[i + 1].0 != b);
+            if alone {
+                let found = (k, a as u32, b);
+                open = Some(open.map_or(found, |o| o.min(found)));
+            }
+        }
+    }
     match open {
         Some((k, a, b)) => Err(Error::invalid_input(format!(
             "edge ({a}, {b}) belongs to {} only: the surface is not closed",
-            describe(k, &triangles[k])
+            describe(k as usize, &triangles[k as usize])
         ))),
         None => Ok(()),
     }

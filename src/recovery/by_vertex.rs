@@ -1,0 +1,62 @@
+//! Items grouped by a vertex number with a counting sort: the protected edges and facets by
+//! their smallest vertex (`tetmesh`), the input's edges and triangles (`validate`). Linear
+//! in the items, and a vertex's items are contiguous. Invariant: `start` is nondecreasing,
+//! `start[0] = 0`, `start[n] = items.len()`.
+
+/// Items grouped by a vertex: the items of vertex `a` are `items[start[a]..start[a + 1]]`
+/// (a counting sort); vertices out of range (the infinite vertex) have none.
+pub struct ByVertex<T> {
+    start: Vec<u32>,
+    pub items: Vec<T>,
+}
+
+impl<T: Copy + Default + PartialEq> ByVertex<T> {
+    pub fn new(vertices: usize, pairs: impl Iterator<Item = (u32, T)> + Clone) -> Self {
+        let mut start = vec![0u32; vertices + 1];
+        for (a, _) in pairs.clone() {
+            start[a as usize + 1] += 1;
+        }
+        for k in 1..start.len() {
+            start[k] += start[k - 1];
+        }
+        let mut next = start.clone();
+        let mut items = vec![T::default(); start[vertices] as usize];
+        for (a, x) in pairs {
+            items[next[a as usize] as usize] = x;
+            next[a as usize] += 1;
+        }
+        ByVertex { start, items }
+    }
+
+    /// The items of vertex `a`.
+    pub fn of(&self, a: usize) -> &[T] {
+        &self.items[self.start[a] as usize..self.start[a + 1] as usize]
+    }
+
+    /// The number of vertices.
+    pub fn vertices(&self) -> usize {
+        self.start.len() - 1
+    }
+
+    /// The index in `items` of `x` among the items of `a`.
+    pub fn position(&self, a: u32, x: &T) -> Option<usize> {
+        let a = a as usize;
+        if a + 1 >= self.start.len() {
+            return None;
+        }
+        let (from, to) = (self.start[a] as usize, self.start[a + 1] as usize);
+        self.items[from..to]
+            .iter()
+            .position(|y| y == x)
+            .map(|k| from + k)
+    }
+
+    /// The pairs `(a, item)` whose item is flagged in `flags` (indexed like `items`).
+    pub fn pairs<'a>(&'a self, flags: &'a [bool]) -> impl Iterator<Item = (u32, T)> + 'a {
+        (0..self.start.len() - 1).flat_map(move |a| {
+            (self.start[a] as usize..self.start[a + 1] as usize)
+                .filter(|&k| flags[k])
+                .map(move |k| (a as u32, self.items[k]))
+        })
+    }
+}
