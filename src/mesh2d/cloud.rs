@@ -181,14 +181,7 @@ impl Cloud {
     }
 
     /// The points other than `a` and `b` in the closed small disk of `[a b]` (the disk with
-    /// diameter `[a b]`), decided exactly, in increasing index order.
-    pub fn in_small_disk(&self, a: u32, b: u32) -> Vec<u32> {
-        let mut found: Vec<u32> = self.small_disk(a, b).collect();
-        found.sort_unstable();
-        found
-    }
-
-    /// The points of [`Cloud::in_small_disk`], as the grid meets them.
+    /// diameter `[a b]`), decided exactly, as the grid meets them.
     pub fn small_disk(&self, a: u32, b: u32) -> impl Iterator<Item = u32> + '_ {
         let (pa, pb) = (self.points[a as usize], self.points[b as usize]);
         let (lo, hi) = widened_box(&pa, &pb);

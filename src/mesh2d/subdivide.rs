@@ -235,9 +235,12 @@ impl Subdivision {
         candidates
     }
 
+    /// The points of the closed small disk of edge `e` but its ends, as the grid meets them
+    /// (their uses do not depend on the order: a count, the classification, and the point
+    /// nearest the midpoint, ties to the smallest index).
     fn disk_points(&self, e: u32) -> Vec<u32> {
         let edge = self.edges[e as usize];
-        self.cloud.in_small_disk(edge.a, edge.b)
+        self.cloud.small_disk(edge.a, edge.b).collect()
     }
 
     /// Whether edge `e` is strongly admissible, `disk` the points of its small disk. An
