@@ -219,6 +219,23 @@ fn grid(nx: usize, ny: usize) -> Vec<[f64; 2]> {
         .collect()
 }
 
+/// `n` points uniform in the unit square, from `seed`.
+fn random_points(n: usize, seed: u64) -> Vec<[f64; 2]> {
+    let mut rng = rand::rngs::StdRng::seed_from_u64(seed);
+    (0..n)
+        .map(|_| [rng.gen::<f64>(), rng.gen::<f64>()])
+        .collect()
+}
+
+/// The points of `points` at positions no earlier point has.
+fn distinct(points: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let first = delmesh::mesh2d::delaunay::first_duplicates(points);
+    (0..points.len())
+        .filter(|&i| first[i] as usize == i)
+        .map(|i| points[i])
+        .collect()
+}
+
 fn sorted_triangles(mesh: &Mesh) -> HashSet<[u32; 3]> {
     mesh.triangles
         .chunks_exact(3)
@@ -234,10 +251,7 @@ fn sorted_triangles(mesh: &Mesh) -> HashSet<[u32; 3]> {
 
 #[test]
 fn delaunay_of_random_points_is_valid_and_order_independent() {
-    let mut rng = rand::rngs::StdRng::seed_from_u64(7);
-    let points: Vec<[f64; 2]> = (0..2000)
-        .map(|_| [rng.gen::<f64>(), rng.gen::<f64>()])
-        .collect();
+    let points = random_points(2000, 7);
     let dt = Delaunay2d::new(&points).expect("triangulation");
     dt.validate().expect("valid");
     let mesh = delaunay_2d(&flat(&points)).expect("mesh");
@@ -279,10 +293,7 @@ fn delaunay_cover_cells() {
     let mesh = delaunay_2d(&flat(&ring)).expect("ring and centre");
     assert_eq!(cover::cells(&mesh).1, mesh.triangles.len() / 3);
     // Random points, and grids: cells agree with the triangulation's own cover test.
-    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
-    let random: Vec<[f64; 2]> = (0..500)
-        .map(|_| [rng.gen::<f64>(), rng.gen::<f64>()])
-        .collect();
+    let random = random_points(500, 11);
     for points in [random, grid(12, 9)] {
         let mesh = delaunay_2d(&flat(&points)).expect("mesh");
         let (cells, _) = cover::cells(&mesh);
@@ -453,11 +464,7 @@ fn classification_agrees_with_the_delaunay_cover_on_cocircular_sets() {
                 rng.gen_range(0..6) as f64 * 0.5,
             ]);
         }
-        let first = delmesh::mesh2d::delaunay::first_duplicates(&points);
-        let points: Vec<[f64; 2]> = (0..points.len())
-            .filter(|&i| first[i] as usize == i)
-            .map(|i| points[i])
-            .collect();
+        let points = distinct(&points);
         let cloud = cloud_of(&points);
         let dt = Delaunay2d::new(&points).expect("triangulation");
         let edges = dt.directed_edges();
@@ -492,12 +499,6 @@ fn sign_of(x: &BigRational) -> Sign {
     }
 }
 
-/// `orient2d(a, b, c)` in rationals.
-fn orient_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Sign {
-    let r = |p: [f64; 2], k: usize| rational(p[k]) - rational(a[k]);
-    sign_of(&(r(b, 0) * r(c, 1) - r(b, 1) * r(c, 0)))
-}
-
 /// Whether `q` is strictly inside (`Positive`), on or outside the circle through the
 /// non-collinear `a, b, c`, in rationals.
 fn in_circle_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2], q: [f64; 2]) -> Sign {
@@ -512,11 +513,11 @@ fn in_circle_exact(a: [f64; 2], b: [f64; 2], c: [f64; 2], q: [f64; 2]) -> Sign {
     let [(ax, ay, al), (bx, by, bl), (cx, cy, cl)] = [a, b, c].map(row);
     let det =
         al * (&bx * &cy - &by * &cx) - bl * (&ax * &cy - &ay * &cx) + cl * (ax * by - ay * bx);
-    sign_of(&det) * orient_exact(a, b, c)
+    sign_of(&det) * orient2d(&a, &b, &c)
 }
 
-/// `Θ₂([Pi Pj])` by Definition 2.2 read literally, by brute force over all points, in
-/// rationals.
+/// `Θ₂([Pi Pj])` by Definition 2.2 read literally, by brute force over all points: small
+/// disks and circles in rationals, sides by the exact `orient2d`.
 fn type_by_definition(points: &[[f64; 2]], i: usize, j: usize) -> Theta2 {
     let (pi, pj) = (points[i], points[j]);
     let n = points.len();
@@ -527,7 +528,7 @@ fn type_by_definition(points: &[[f64; 2]], i: usize, j: usize) -> Theta2 {
     if e.is_empty() {
         return Theta2::T0;
     }
-    let sides: HashSet<Sign> = e.iter().map(|&k| orient_exact(pi, pj, points[k])).collect();
+    let sides: HashSet<Sign> = e.iter().map(|&k| orient2d(&pi, &pj, &points[k])).collect();
     if sides.contains(&Sign::Zero) {
         return Theta2::Through;
     }
@@ -554,10 +555,10 @@ fn type_by_definition(points: &[[f64; 2]], i: usize, j: usize) -> Theta2 {
     let f: Vec<usize> = others([i, j, q])
         .filter(|&k| position(k) == Sign::Zero)
         .collect();
-    let side = orient_exact(pi, pj, points[q]);
+    let side = orient2d(&pi, &pj, &points[q]);
     if f.is_empty() {
         Theta2::T1_0
-    } else if f.iter().all(|&k| orient_exact(pi, pj, points[k]) == side) {
+    } else if f.iter().all(|&k| orient2d(&pi, &pj, &points[k]) == side) {
         Theta2::T1_2_0
     } else {
         Theta2::T1_2_1
@@ -568,10 +569,7 @@ fn type_by_definition(points: &[[f64; 2]], i: usize, j: usize) -> Theta2 {
 fn classification_agrees_with_definition_2_2() {
     // Every pair of: random points, points on a rotated grid (cocircular quadruples on
     // slanted lines), and points on circles, on both sides of many edges.
-    let mut rng = rand::rngs::StdRng::seed_from_u64(11);
-    let random: Vec<[f64; 2]> = (0..40)
-        .map(|_| [rng.gen::<f64>(), rng.gen::<f64>()])
-        .collect();
+    let random = random_points(40, 11);
     let rotated: Vec<[f64; 2]> = (0..36)
         .map(|k| {
             let (x, y) = ((k % 6) as f64, (k / 6) as f64);
@@ -588,11 +586,7 @@ fn classification_agrees_with_definition_2_2() {
         }
     }
     circles.push([0.5, 0.25]);
-    let first = delmesh::mesh2d::delaunay::first_duplicates(&circles);
-    let circles: Vec<[f64; 2]> = (0..circles.len())
-        .filter(|&i| first[i] as usize == i)
-        .map(|i| circles[i])
-        .collect();
+    let circles = distinct(&circles);
     // Three points on one arc over [(0,0) (2,0)], its circle through no other point.
     let arc = vec![
         [0.0, 0.0],
@@ -1405,10 +1399,7 @@ fn quality_small_input_angles_terminate() {
 
 #[test]
 fn quality_points_only_mesh_their_convex_hull() {
-    let mut rng = rand::rngs::StdRng::seed_from_u64(61);
-    let xy: Vec<[f64; 2]> = (0..200)
-        .map(|_| [rng.gen::<f64>(), rng.gen::<f64>()])
-        .collect();
+    let xy = random_points(200, 61);
     let case = QualityCase {
         name: "200 random points",
         xy,

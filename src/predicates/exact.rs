@@ -97,18 +97,22 @@ fn incircle_fixed(a: &[f64; 2], b: &[f64; 2], c: &[f64; 2], d: &[f64; 2]) -> Opt
 fn orient3d_fixed(a: &Point, b: &Point, c: &Point, d: &Point) -> Option<Sign> {
     let points = [a, b, c, d];
     let x: [i64; 12] = fixed_integers(std::array::from_fn(|k| points[k / 3][k % 3]))?;
-    let r: [[i64; 3]; 3] =
+    let [r, s, t]: [[i64; 3]; 3] =
         std::array::from_fn(|i| std::array::from_fn(|k| x[3 * (i + 1) + k] - x[k]));
+    Some(wide_sign(det3_fixed(&r, &s, &t)))
+}
+
+/// The determinant of the rows `r, s, t` (each below `2^62`), expanded along `z` as the
+/// filters do: 2 by 2 minors below `2^125` in `i128`, the result below `2^189` in 256 bits.
+fn det3_fixed(r: &[i64; 3], s: &[i64; 3], t: &[i64; 3]) -> (i128, u128) {
     let minor = |p: &[i64; 3], q: &[i64; 3]| product(p[0], q[1]) - product(q[0], p[1]);
-    let [r, s, t] = &r;
-    let det = [
+    [
         wide_product(i128::from(r[2]), minor(s, t)),
         wide_product(-i128::from(s[2]), minor(r, t)),
         wide_product(i128::from(t[2]), minor(r, s)),
     ]
     .into_iter()
-    .fold((0i128, 0u128), wide_sum);
-    Some(wide_sign(det))
+    .fold((0i128, 0u128), wide_sum)
 }
 
 /// [`insphere`] in fixed-width integers, when the fifteen coordinates are
@@ -122,23 +126,13 @@ fn insphere_fixed(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Opti
     let rows: [[i64; 3]; 4] =
         std::array::from_fn(|i| std::array::from_fn(|k| x[3 * i + k] - x[12 + k]));
     let lift = |r: &[i64; 3]| product(r[0], r[0]) + product(r[1], r[1]) + product(r[2], r[2]);
-    let minor = |p: &[i64; 3], q: &[i64; 3]| product(p[0], q[1]) - product(q[0], p[1]);
-    let minor3 = |p: &[i64; 3], q: &[i64; 3], r: &[i64; 3]| {
-        [
-            wide_product(i128::from(p[2]), minor(q, r)),
-            wide_product(-i128::from(q[2]), minor(p, r)),
-            wide_product(i128::from(r[2]), minor(p, q)),
-        ]
-        .into_iter()
-        .fold((0i128, 0u128), wide_sum)
-    };
     let [ra, rb, rc, rd] = &rows;
     // (ld*abc - lc*abd) + (lb*acd - la*bcd), the translated determinant, is -insphere.
     let terms = [
-        (lift(rd), minor3(ra, rb, rc), true),
-        (lift(rc), minor3(ra, rb, rd), false),
-        (lift(rb), minor3(ra, rc, rd), true),
-        (lift(ra), minor3(rb, rc, rd), false),
+        (lift(rd), det3_fixed(ra, rb, rc), true),
+        (lift(rc), det3_fixed(ra, rb, rd), false),
+        (lift(rb), det3_fixed(ra, rc, rd), true),
+        (lift(ra), det3_fixed(rb, rc, rd), false),
     ];
     let det = terms
         .into_iter()
@@ -304,14 +298,13 @@ pub(super) fn insphere(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) ->
     // Big integers, not the expansions: `robust`'s in-sphere zeroes arrays of thousands of
     // doubles on every call, which makes it several times slower here (fandisk: 147,000
     // instructions a call against 22,000).
-    let weightless = |p: &Point| [p[0], p[1], p[2], 0.0];
-    power_test(
-        &weightless(a),
-        &weightless(b),
-        &weightless(c),
-        &weightless(d),
-        &weightless(e),
-    )
+    insphere_big(a, b, c, d, e)
+}
+
+/// [`insphere`] in big integers: the power test of the points with zero weights.
+fn insphere_big(a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
+    let [a, b, c, d, e] = [a, b, c, d, e].map(|p| [p[0], p[1], p[2], 0.0]);
+    power_test(&a, &b, &c, &d, &e)
 }
 
 /// Exact [`super::power_test`]: minus the determinant with rows `(x, y, z, l)` of `a..d`
@@ -498,7 +491,7 @@ mod tests {
     }
 
     /// A grid spacing and an offset for a round.
-    fn scale(round: usize) -> (f64, f64) {
+    fn scale_of(round: usize) -> (f64, f64) {
         (
             [1.0, 0.01, 1e-7, 3.0e5][round % 4],
             [0.0, 0.3, -17.25, 1e6][(round / 4) % 4],
@@ -510,7 +503,7 @@ mod tests {
         assert_agreement(11, |round, draw| {
             // Points of a grid of spacing h around an offset (exact differences, often
             // cocircular), or near a circle (nearly cocircular), or anywhere.
-            let (h, offset) = scale(round);
+            let (h, offset) = scale_of(round);
             let mut point = |_| match round % 3 {
                 0 => [
                     offset + h * (draw(9) as f64 - 4.0),
@@ -533,18 +526,28 @@ mod tests {
         });
     }
 
+    /// A point of round `round` in 3D: on a grid of `grid` steps per axis around an offset
+    /// (often degenerate), with decimal coordinates `k / scale`, `|k| < range` (inexact
+    /// differences), or anywhere.
+    fn point3(
+        round: usize,
+        draw: &mut dyn FnMut(u64) -> u64,
+        grid: u64,
+        (range, scale): (u64, f64),
+    ) -> Point {
+        let (h, offset) = scale_of(round);
+        let half = (grid / 2) as f64;
+        [0, 1, 2].map(|_| match round % 3 {
+            0 => offset + h * (draw(grid) as f64 - half),
+            1 => (draw(2 * range) as f64 - range as f64) / scale,
+            _ => offset + h * (draw(1 << 30) as f64 / (1 << 20) as f64),
+        })
+    }
+
     #[test]
     fn fixed_width_orient3d_agrees_with_big_integers() {
         assert_agreement(13, |round, draw| {
-            // Points of a grid of spacing h around an offset (often coplanar), points with
-            // decimal coordinates (inexact differences), or anywhere.
-            let (h, offset) = scale(round);
-            let mut point = |_| match round % 3 {
-                0 => [0, 1, 2].map(|_| offset + h * (draw(5) as f64 - 2.0)),
-                1 => [0, 1, 2].map(|_| (draw(2000) as f64 - 1000.0) / 1e4),
-                _ => [0, 1, 2].map(|_| offset + h * (draw(1 << 30) as f64 / (1 << 20) as f64)),
-            };
-            let [a, b, c, d] = [0, 1, 2, 3].map(&mut point);
+            let [a, b, c, d] = [0, 1, 2, 3].map(|_| point3(round, draw, 5, (1000, 1e4)));
             let [ia, ib, ic, id] = integers::<3, 4>([&a, &b, &c, &d], None);
             let expected = super::sign(&det3(&[sub(&ib, &ia), sub(&ic, &ia), sub(&id, &ia)]));
             Some((orient3d_fixed(&a, &b, &c, &d)?, expected))
@@ -554,24 +557,11 @@ mod tests {
     #[test]
     fn fixed_width_insphere_agrees_with_big_integers() {
         assert_agreement(17, |round, draw| {
-            // Points of a grid (often cospherical), points with decimal coordinates, or
-            // anywhere.
-            let (h, offset) = scale(round);
-            let mut point = |_| match round % 3 {
-                0 => [0, 1, 2].map(|_| offset + h * (draw(3) as f64 - 1.0)),
-                1 => [0, 1, 2].map(|_| (draw(200) as f64 - 100.0) / 1e3),
-                _ => [0, 1, 2].map(|_| offset + h * (draw(1 << 30) as f64 / (1 << 20) as f64)),
-            };
-            let [a, b, c, d, e] = [0, 1, 2, 3, 4].map(&mut point);
-            let weightless = |p: &Point| [p[0], p[1], p[2], 0.0];
-            let expected = power_test(
-                &weightless(&a),
-                &weightless(&b),
-                &weightless(&c),
-                &weightless(&d),
-                &weightless(&e),
-            );
-            Some((insphere_fixed(&a, &b, &c, &d, &e)?, expected))
+            let [a, b, c, d, e] = [0, 1, 2, 3, 4].map(|_| point3(round, draw, 3, (100, 1e3)));
+            Some((
+                insphere_fixed(&a, &b, &c, &d, &e)?,
+                insphere_big(&a, &b, &c, &d, &e),
+            ))
         });
     }
 

@@ -216,9 +216,9 @@ impl TetMesh {
     }
 
     /// The protected edges (sorted pairs) and facets (sorted triples) that are in the mesh,
-    /// found in one pass over the tetrahedra. The protected sets are looked up through lists
-    /// by smallest vertex ([`ByVertex`]): a tetrahedron's edges share few vertices, and these
-    /// short lists stay in cache where the hash sets' probes would not.
+    /// found in one pass over the tetrahedra. The protected sets are looked up in lists by
+    /// smallest vertex ([`ByVertex`]) and the hits flagged, the result sets built once from
+    /// the flags (knot: 15.1 -> 12.0 million instructions against hash lookups and inserts).
     pub fn present(&self, protected: &Protected) -> (FxHashSet<[u32; 2]>, FxHashSet<Key>) {
         let n = self.points.len();
         let edge_lists = ByVertex::new(n, protected.edges.iter().map(|&[a, b]| (a, b)));
