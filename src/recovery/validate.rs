@@ -142,11 +142,7 @@ pub fn isolated_vertices(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Vec<u32
         .map(|(_, &v)| v)
         .collect();
     isolated.sort_unstable();
-    let boxes = triangles
-        .iter()
-        .map(|t| Aabb::of_points(&t.map(|v| points[v as usize])))
-        .collect();
-    let bvh = Bvh::new(boxes);
+    let bvh = triangle_hierarchy(points, triangles);
     isolated.retain(|&v| {
         let p = &points[v as usize];
         let mut on_surface = false;
@@ -274,12 +270,8 @@ fn check_closed(triangles: &[[u32; 3]]) -> Result<()> {
 /// Fails when two triangles meet other than at their shared vertices and edge (the pair with
 /// the smallest numbers is named). Only the pairs whose bounding boxes overlap are tested.
 fn check_intersections(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> {
-    let boxes = triangles
-        .iter()
-        .map(|t| Aabb::of_points(&t.map(|v| points[v as usize])))
-        .collect();
     let mut first: Option<(usize, usize)> = None;
-    Bvh::new(boxes).for_each_overlapping_pair(|i, j| {
+    triangle_hierarchy(points, triangles).for_each_overlapping_pair(|i, j| {
         if first.is_none_or(|f| (i, j) < f)
             && improper_contact(points, &triangles[i], &triangles[j])
         {
@@ -294,6 +286,16 @@ fn check_intersections(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()
         ))),
         None => Ok(()),
     }
+}
+
+/// The bounding-volume hierarchy of the triangles' boxes (item `k` is triangle `k`).
+fn triangle_hierarchy(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Bvh {
+    Bvh::new(
+        triangles
+            .iter()
+            .map(|t| Aabb::of_points(&t.map(|v| points[v as usize])))
+            .collect(),
+    )
 }
 
 /// Whether triangles `s` and `t` (proper, distinct, with vertices at distinct positions when
