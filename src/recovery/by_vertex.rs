@@ -1,6 +1,7 @@
 //! Items grouped by a vertex number with a counting sort: the protected edges and facets by
-//! their smallest vertex (`tetmesh`), the input's edges and triangles (`validate`). Linear
-//! in the items, and a vertex's items are contiguous. Invariant: `start` is nondecreasing,
+//! their smallest vertex (`tetmesh`), the input triangles by their smallest vertex
+//! (`classify`) and by each of their vertices (`partition`), the input's edges and triangles
+//! (`validate`). Linear in the items, and a vertex's items are contiguous, in input order. Invariant: `start` is nondecreasing,
 //! `start[0] = 0`, `start[n] = items.len()`.
 
 /// Items grouped by a vertex: the items of vertex `a` are `items[start[a]..start[a + 1]]`
@@ -38,17 +39,28 @@ impl<T: Copy + Default + PartialEq> ByVertex<T> {
         self.start.len() - 1
     }
 
-    /// The index in `items` of `x` among the items of `a`.
-    pub fn position(&self, a: u32, x: &T) -> Option<usize> {
+    /// The range in `items` of the items of `a` (empty out of range).
+    fn range(&self, a: u32) -> std::ops::Range<usize> {
         let a = a as usize;
         if a + 1 >= self.start.len() {
-            return None;
+            return 0..0;
         }
-        let (from, to) = (self.start[a] as usize, self.start[a + 1] as usize);
-        self.items[from..to]
+        self.start[a] as usize..self.start[a + 1] as usize
+    }
+
+    /// The index in `items` of `x` among the items of `a`.
+    pub fn position(&self, a: u32, x: &T) -> Option<usize> {
+        let range = self.range(a);
+        let from = range.start;
+        self.items[range]
             .iter()
             .position(|y| y == x)
             .map(|k| from + k)
+    }
+
+    /// The first item of `a` that `is` accepts.
+    pub fn find(&self, a: u32, is: impl Fn(&T) -> bool) -> Option<&T> {
+        self.items[self.range(a)].iter().find(|x| is(x))
     }
 
     /// The pairs `(a, item)` whose item is flagged in `flags` (indexed like `items`).

@@ -11,9 +11,8 @@
 //! used by kept tetrahedra; facet `k` is input triangle `k`, labels (from, to) with the
 //! right-hand normal pointing from `from` to `to`.
 
-use rustc_hash::FxHashMap as HashMap;
-
-use super::tetmesh::{key, Key, TetMesh};
+use super::by_vertex::ByVertex;
+use super::tetmesh::{key, TetMesh};
 use super::SurfaceOptions;
 use crate::error::{Error, Result};
 use crate::mesh::{Mesh, DIMENSION_UNKNOWN};
@@ -77,11 +76,13 @@ struct InputFacets {
 impl InputFacets {
     /// Errors when an input triangle is not a facet of the mesh.
     fn find(mesh: &TetMesh, triangles: &[[u32; 3]]) -> Result<Self> {
-        let index: HashMap<Key, u32> = triangles
-            .iter()
-            .enumerate()
-            .map(|(k, &f)| (key(f), k as u32))
-            .collect();
+        let index = ByVertex::new(
+            mesh.points.len(),
+            triangles.iter().enumerate().map(|(k, &f)| {
+                let [a, b, c] = key(f);
+                (a, ([b, c], k as u32))
+            }),
+        );
         let mut mask = vec![0u8; mesh.tets.slots()];
         let mut at = vec![(u32::MAX, 0); triangles.len()];
         for t in mesh.tets.live() {
@@ -91,7 +92,8 @@ impl InputFacets {
                 if n < t {
                     continue;
                 }
-                if let Some(&k) = index.get(&key(mesh.facet(t, i))) {
+                let [a, b, c] = key(mesh.facet(t, i));
+                if let Some(&(_, k)) = index.find(a, |(bc, _)| *bc == [b, c]) {
                     let j = (0..4)
                         .find(|&j| mesh.tets.neighbor(n, j) == t)
                         .ok_or_else(|| {

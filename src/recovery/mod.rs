@@ -147,12 +147,14 @@ pub fn tetrahedralize_surface(
 fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize) -> Result<()> {
     // What is recovered stays: flips never destroy a protected edge or facet.
     let (mut edges_done, present) = mesh.present(&part.protected);
-    let mut faces_done: HashSet<[u32; 3]> = part
-        .all_subfaces()
-        .into_iter()
-        .map(|(_, f)| f)
-        .filter(|f| present.contains(&tetmesh::key(*f)))
-        .collect();
+    let mut faces_done: HashSet<[u32; 3]> =
+        HashSet::with_capacity_and_hasher(present.len(), Default::default());
+    faces_done.extend(
+        part.all_subfaces()
+            .into_iter()
+            .map(|(_, f)| f)
+            .filter(|f| present.contains(&tetmesh::key(*f))),
+    );
     loop {
         let pending: Vec<[u32; 2]> = part
             .subedges()
@@ -305,10 +307,13 @@ fn enclosed_delaunay(
     isolated: &[u32],
 ) -> Result<TetMesh> {
     let used: Vec<u32> = {
-        let set: HashSet<u32> = triangles.iter().flatten().copied().collect();
-        let mut v: Vec<u32> = set.into_iter().chain(isolated.iter().copied()).collect();
-        v.sort_unstable();
-        v
+        let mut meshed = vec![false; points.len()];
+        for &v in triangles.iter().flatten().chain(isolated) {
+            meshed[v as usize] = true;
+        }
+        (0..points.len() as u32)
+            .filter(|&v| meshed[v as usize])
+            .collect()
     };
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];

@@ -11,6 +11,7 @@
 
 use rustc_hash::FxHashMap as HashMap;
 
+use super::by_vertex::ByVertex;
 use super::flips::Protected;
 use super::tetmesh::key;
 
@@ -26,12 +27,11 @@ pub enum Host {
 pub struct Partition {
     /// The input triangles.
     input: Vec<[u32; 3]>,
-    /// Per input triangle, its subfaces.
-    pub subfaces: Vec<Vec<[u32; 3]>>,
-    /// Input triangles around each input edge.
-    edge_faces: HashMap<[u32; 2], Vec<usize>>,
+    /// The subfaces of the input triangles that points split; an input triangle missing here
+    /// is its own only subface.
+    split: HashMap<usize, Vec<[u32; 3]>>,
     /// Input triangles around each input vertex.
-    vertex_faces: HashMap<u32, Vec<usize>>,
+    vertex_faces: ByVertex<u32>,
     /// The host of every point added on the surface (and still there).
     pub host: HashMap<u32, Host>,
     pub protected: Protected,
@@ -49,24 +49,41 @@ pub fn sides(f: [u32; 3]) -> [[u32; 2]; 3] {
 
 impl Partition {
     pub fn new(triangles: &[[u32; 3]]) -> Self {
+        let vertices = triangles
+            .iter()
+            .flatten()
+            .max()
+            .map_or(0, |&v| v as usize + 1);
+        let incidences = triangles
+            .iter()
+            .enumerate()
+            .flat_map(|(k, f)| f.map(|v| (v, k as u32)));
         let mut p = Partition {
             input: triangles.to_vec(),
-            subfaces: triangles.iter().map(|&f| vec![f]).collect(),
-            edge_faces: HashMap::default(),
-            vertex_faces: HashMap::default(),
+            split: HashMap::default(),
+            vertex_faces: ByVertex::new(vertices, incidences),
             host: HashMap::default(),
             protected: Protected::default(),
         };
-        for (k, &f) in triangles.iter().enumerate() {
-            for e in sides(f) {
-                p.edge_faces.entry(e).or_default().push(k);
-            }
-            for v in f {
-                p.vertex_faces.entry(v).or_default().push(k);
-            }
+        p.protected.facets.reserve(triangles.len());
+        p.protected.edges.reserve(triangles.len() * 3 / 2);
+        for &f in triangles {
             p.protect(f);
         }
         p
+    }
+
+    /// The subfaces of input triangle `f`.
+    pub fn subfaces(&self, f: usize) -> &[[u32; 3]] {
+        self.split
+            .get(&f)
+            .map_or(std::slice::from_ref(&self.input[f]), Vec::as_slice)
+    }
+
+    /// The subfaces of input triangle `f`, to change.
+    fn subfaces_mut(&mut self, f: usize) -> &mut Vec<[u32; 3]> {
+        let whole = self.input[f];
+        self.split.entry(f).or_insert_with(|| vec![whole])
     }
 
     fn protect(&mut self, f: [u32; 3]) {
@@ -84,7 +101,7 @@ impl Partition {
             let used = self
                 .faces_of(e[0])
                 .iter()
-                .any(|&g| self.subfaces[g].iter().any(|&s| sides(s).contains(&e)));
+                .any(|&g| self.subfaces(g).iter().any(|&s| sides(s).contains(&e)));
             if !used {
                 self.protected.edges.remove(&e);
             }
@@ -95,14 +112,27 @@ impl Partition {
     pub fn faces_of(&self, v: u32) -> Vec<usize> {
         match self.host.get(&v) {
             Some(Host::Face(f)) => vec![*f],
-            Some(Host::Edge(e)) => self.edge_faces.get(e).cloned().unwrap_or_default(),
-            None => self.vertex_faces.get(&v).cloned().unwrap_or_default(),
+            Some(Host::Edge(e)) => self.faces_of_edge(*e),
+            None => self.faces_of_vertex(v).map(|f| f as usize).collect(),
         }
     }
 
+    /// The input triangles around input vertex `v`.
+    fn faces_of_vertex(&self, v: u32) -> impl Iterator<Item = u32> + '_ {
+        let list = if (v as usize) < self.vertex_faces.vertices() {
+            self.vertex_faces.of(v as usize)
+        } else {
+            &[]
+        };
+        list.iter().copied()
+    }
+
     /// The input triangles around input edge `e`.
-    pub fn faces_of_edge(&self, e: [u32; 2]) -> &[usize] {
-        self.edge_faces.get(&e).map_or(&[], |v| v.as_slice())
+    pub fn faces_of_edge(&self, [a, b]: [u32; 2]) -> Vec<usize> {
+        self.faces_of_vertex(a)
+            .map(|f| f as usize)
+            .filter(|&f| self.input[f].contains(&b))
+            .collect()
     }
 
     /// Where a point added on sub-edge `(p, q)` lies.
@@ -130,16 +160,14 @@ impl Partition {
     /// Every current sub-edge, sorted.
     pub fn subedges(&self) -> Vec<[u32; 2]> {
         let mut e: Vec<[u32; 2]> = self.protected.edges.iter().copied().collect();
-        e.sort_unstable();
+        e.sort_unstable_by_key(|&[a, b]| (a as u64) << 32 | b as u64);
         e
     }
 
     /// Every current subface with its input triangle, in triangle order.
     pub fn all_subfaces(&self) -> Vec<(usize, [u32; 3])> {
-        self.subfaces
-            .iter()
-            .enumerate()
-            .flat_map(|(f, subs)| subs.iter().map(move |&s| (f, s)))
+        (0..self.input.len())
+            .flat_map(|f| self.subfaces(f).iter().map(move |&s| (f, s)))
             .collect()
     }
 
@@ -147,24 +175,25 @@ impl Partition {
     pub fn split_edge(&mut self, p: u32, q: u32, s: u32) {
         let host = self.host_of_subedge(p, q);
         let faces: Vec<usize> = match host {
-            Host::Edge(e) => self.faces_of_edge(e).to_vec(),
+            Host::Edge(e) => self.faces_of_edge(e),
             Host::Face(f) => vec![f],
         };
         let e = pair(p, q);
         for &f in &faces {
-            let hit: Vec<[u32; 3]> = self.subfaces[f]
+            let hit: Vec<[u32; 3]> = self
+                .subfaces(f)
                 .iter()
                 .copied()
                 .filter(|&t| sides(t).contains(&e))
                 .collect();
-            self.subfaces[f].retain(|&t| !sides(t).contains(&e));
+            self.subfaces_mut(f).retain(|&t| !sides(t).contains(&e));
             for t in hit {
                 self.protected.facets.remove(&key(t));
                 let r = (0..3).find(|&k| t[k] != p && t[k] != q).unwrap_or(0);
                 let [x, y, z] = [t[r], t[(r + 1) % 3], t[(r + 2) % 3]];
                 // (x, y, z) with the split edge y -> z: both halves keep the orientation.
                 for half in [[x, y, s], [x, s, z]] {
-                    self.subfaces[f].push(half);
+                    self.subfaces_mut(f).push(half);
                     self.protect(half);
                 }
             }
@@ -175,11 +204,11 @@ impl Partition {
 
     /// Records point `s` added inside subface `t` of input triangle `f`.
     pub fn split_face(&mut self, f: usize, t: [u32; 3], s: u32) {
-        self.subfaces[f].retain(|&u| u != t);
+        self.subfaces_mut(f).retain(|&u| u != t);
         self.protected.facets.remove(&key(t));
         for k in 0..3 {
             let third = [t[k], t[(k + 1) % 3], s];
-            self.subfaces[f].push(third);
+            self.subfaces_mut(f).push(third);
             self.protect(third);
         }
         self.host.insert(s, Host::Face(f));
@@ -187,7 +216,7 @@ impl Partition {
 
     /// The subfaces of `f` around vertex `v`.
     pub fn fan(&self, f: usize, v: u32) -> Vec<[u32; 3]> {
-        self.subfaces[f]
+        self.subfaces(f)
             .iter()
             .copied()
             .filter(|t| t.contains(&v))
@@ -197,9 +226,9 @@ impl Partition {
     /// Replaces, in triangle `f`, the subfaces `old` by `new` (the retriangulated link of a
     /// removed point), keeping `protected` in step.
     pub fn retriangulate(&mut self, f: usize, old: &[[u32; 3]], new: &[[u32; 3]]) {
-        self.subfaces[f].retain(|t| !old.contains(t));
+        self.subfaces_mut(f).retain(|t| !old.contains(t));
         for &t in new {
-            self.subfaces[f].push(t);
+            self.subfaces_mut(f).push(t);
             self.protect(t);
         }
         for &t in old {

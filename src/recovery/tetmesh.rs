@@ -26,6 +26,17 @@ pub const NONE: u32 = u32::MAX;
 /// A facet by its sorted vertices.
 pub type Key = [u32; 3];
 
+/// The set of `items`, one per flag set in `flags`, allocated once.
+fn flagged<T: Eq + std::hash::Hash>(
+    flags: &[bool],
+    items: impl Iterator<Item = T>,
+) -> FxHashSet<T> {
+    let n = flags.iter().filter(|&&f| f).count();
+    let mut set = FxHashSet::with_capacity_and_hasher(n, Default::default());
+    set.extend(items);
+    set
+}
+
 /// The sorted vertices of a facet.
 pub fn key([a, b, c]: [u32; 3]) -> Key {
     // A sorting network: three compare-exchanges.
@@ -243,11 +254,14 @@ impl TetMesh {
                 }
             }
         }
-        let edges = edge_lists.pairs(&edge_found).map(|(a, b)| [a, b]).collect();
-        let facets = facet_lists
-            .pairs(&facet_found)
-            .map(|(a, [b, c])| [a, b, c])
-            .collect();
+        let edges = flagged(
+            &edge_found,
+            edge_lists.pairs(&edge_found).map(|(a, b)| [a, b]),
+        );
+        let facets = flagged(
+            &facet_found,
+            facet_lists.pairs(&facet_found).map(|(a, [b, c])| [a, b, c]),
+        );
         (edges, facets)
     }
 
