@@ -63,12 +63,17 @@ impl<T: Copy + Default + PartialEq> ByVertex<T> {
         self.items[self.range(a)].iter().find(|x| is(x))
     }
 
+    /// Every item's vertex and index in `items`, by vertex.
+    pub fn entries(&self) -> impl Iterator<Item = (u32, usize)> + '_ {
+        (0..self.start.len() - 1).flat_map(move |a| {
+            (self.start[a] as usize..self.start[a + 1] as usize).map(move |k| (a as u32, k))
+        })
+    }
+
     /// The pairs `(a, item)` whose item is flagged in `flags` (indexed like `items`).
     pub fn pairs<'a>(&'a self, flags: &'a [bool]) -> impl Iterator<Item = (u32, T)> + 'a {
-        (0..self.start.len() - 1).flat_map(move |a| {
-            (self.start[a] as usize..self.start[a + 1] as usize)
-                .filter(|&k| flags[k])
-                .map(move |k| (a as u32, self.items[k]))
-        })
+        self.entries()
+            .filter(|&(_, k)| flags[k])
+            .map(|(a, k)| (a, self.items[k]))
     }
 }

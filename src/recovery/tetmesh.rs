@@ -226,32 +226,38 @@ impl TetMesh {
         None
     }
 
-    /// The protected edges (sorted pairs) and facets (sorted triples) that are in the mesh,
-    /// found in one pass over the tetrahedra. The protected sets are looked up in lists by
-    /// smallest vertex ([`ByVertex`]) and the hits flagged, the result sets built once from
-    /// the flags (knot: 15.1 -> 12.0 million instructions against hash lookups and inserts).
-    pub fn present(&self, protected: &Protected) -> (FxHashSet<[u32; 2]>, FxHashSet<Key>) {
+    /// The protected edges (sorted pairs) and facets (sorted triples) that are in the mesh.
+    /// The protected sets are looked up in lists by smallest vertex ([`ByVertex`]), the
+    /// hits flagged, and the result sets built once from the flags. Facets are found in one
+    /// pass over the tetrahedra, each facet once; a facet found brings its edges, and only
+    /// the protected edges of no facet found are searched around their smaller vertex
+    /// (bunny00: 158 -> 97 million instructions against looking up the six edges of every
+    /// tetrahedron).
+    pub fn present(&mut self, protected: &Protected) -> (FxHashSet<[u32; 2]>, FxHashSet<Key>) {
         let n = self.points.len();
         let edge_lists = ByVertex::new(n, protected.edges.iter().map(|&[a, b]| (a, b)));
         let facet_lists = ByVertex::new(n, protected.facets.iter().map(|&[a, b, c]| (a, [b, c])));
         let mut edge_found = vec![false; edge_lists.items.len()];
         let mut facet_found = vec![false; facet_lists.items.len()];
         for t in self.tets.live() {
-            let v = self.tets.vertices(t);
             for i in 0..4 {
-                for j in i + 1..4 {
-                    let (a, b) = (v[i].min(v[j]), v[i].max(v[j]));
-                    if let Some(k) = edge_lists.position(a, &b) {
-                        edge_found[k] = true;
-                    }
-                }
                 if self.tets.neighbor(t, i) < t {
                     continue; // each facet once, from the lower of its two tetrahedra
                 }
                 let [a, b, c] = key(self.facet(t, i));
                 if let Some(k) = facet_lists.position(a, &[b, c]) {
                     facet_found[k] = true;
+                    for (x, y) in [(a, b), (a, c), (b, c)] {
+                        if let Some(j) = edge_lists.position(x, &y) {
+                            edge_found[j] = true;
+                        }
+                    }
                 }
+            }
+        }
+        for (a, k) in edge_lists.entries() {
+            if !edge_found[k] {
+                edge_found[k] = self.find_edge(a, edge_lists.items[k]).is_some();
             }
         }
         let edges = flagged(
