@@ -189,11 +189,11 @@ fn best_ring_triangulation(
     allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
 ) -> Option<Vec<[usize; 3]>> {
     let n = ring.len();
-    // best[i][j]: the best worst shape over triangulations of the sub-polygon i..=j, and the
-    // apex k of the triangle on side (i, j).
-    let mut best = [[(f64::NEG_INFINITY, usize::MAX); MAX_SHELL]; MAX_SHELL];
+    // best[i * n + j]: the best worst shape over triangulations of the sub-polygon i..=j, and
+    // the apex k of the triangle on side (i, j). Sized to the ring (most rings are short).
+    let mut best = vec![(f64::NEG_INFINITY, usize::MAX); n * n];
     for i in 0..n - 1 {
-        best[i][i + 1] = (f64::INFINITY, usize::MAX);
+        best[i * n + i + 1] = (f64::INFINITY, usize::MAX);
     }
     let side = |i: usize, j: usize| j == i + 1 || (i == 0 && j == n - 1);
     for len in 2..n {
@@ -203,8 +203,8 @@ fn best_ring_triangulation(
                 continue;
             }
             for k in i + 1..j {
-                let worst = best[i][k].0.min(best[k][j].0);
-                if worst <= best[i][j].0 {
+                let worst = best[i * n + k].0.min(best[k * n + j].0);
+                if worst <= best[i * n + j].0 {
                     continue;
                 }
                 let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
@@ -213,20 +213,20 @@ fn best_ring_triangulation(
                     continue;
                 }
                 let q = worst.min(shape(mesh, ta)).min(shape(mesh, tb));
-                if q > best[i][j].0 {
-                    best[i][j] = (q, k);
+                if q > best[i * n + j].0 {
+                    best[i * n + j] = (q, k);
                 }
             }
         }
     }
-    if best[0][n - 1].1 == usize::MAX {
+    if best[n - 1].1 == usize::MAX {
         return None;
     }
     let mut triangles = Vec::with_capacity(n - 2);
     let mut stack = vec![(0, n - 1)];
     while let Some((i, j)) = stack.pop() {
         if j > i + 1 {
-            let k = best[i][j].1;
+            let k = best[i * n + j].1;
             triangles.push([i, k, j]);
             stack.push((i, k));
             stack.push((k, j));

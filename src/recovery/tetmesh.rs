@@ -329,7 +329,10 @@ impl TetMesh {
     /// the ring length). `None` if the ring is not closed within `limit` steps.
     pub fn shell(&self, t: u32, a: u32, b: u32, limit: usize) -> Option<(Vec<u32>, Vec<u32>)> {
         let [c, d] = self.others(t, a, b);
-        let (mut tets, mut ring) = (vec![t], vec![c, d]);
+        // Shells are short: one allocation each, not one per doubling.
+        let (mut tets, mut ring) = (Vec::with_capacity(16), Vec::with_capacity(16));
+        tets.push(t);
+        ring.extend([c, d]);
         let mut current = t;
         loop {
             // Cross the facet (a, b, w_last) into the next tetrahedron: opposite w[len-2].
@@ -420,7 +423,7 @@ impl TetMesh {
         for &t in old {
             self.tets.mark[t as usize] = 2;
         }
-        let mut outer: Vec<(Key, u32)> = Vec::new();
+        let mut outer: Vec<(Key, u32)> = Vec::with_capacity(2 * old.len() + 2);
         for &t in old {
             for i in 0..4 {
                 if self.tets.mark[self.tets.neighbor(t, i) as usize] != 2 {
@@ -509,43 +512,55 @@ fn cone_gluing(
 /// The gluing of the new tetrahedra's facets, or an internal error naming the first facet
 /// that matches nothing (or too much).
 fn match_facets(outer: &[(Key, u32)], new: &[[u32; 4]]) -> Result<Vec<[Glue; 4]>> {
-    let mut facets: Vec<(Key, usize, usize)> = Vec::with_capacity(4 * new.len());
+    // Keys packed above a 32-bit payload: sorting integers, not tuples of arrays.
+    let pack = |k: Key, low: u32| {
+        (k[0] as u128) << 96 | (k[1] as u128) << 64 | (k[2] as u128) << 32 | low as u128
+    };
+    let unpack_key = |x: u128| [(x >> 96) as u32, (x >> 64) as u32, (x >> 32) as u32];
+    let mut facets: Vec<u128> = Vec::with_capacity(4 * new.len());
     for (n, q) in new.iter().enumerate() {
         for (i, face) in FACE.iter().enumerate() {
-            facets.push((key(face.map(|k| q[k])), n, i));
+            facets.push(pack(key(face.map(|k| q[k])), (4 * n + i) as u32));
         }
     }
     facets.sort_unstable();
-    let mut outer: Vec<(Key, u32)> = outer.to_vec();
+    let mut outer: Vec<u128> = outer.iter().map(|&(k, f)| pack(k, f)).collect();
     outer.sort_unstable();
     let mut gluing = vec![[Glue::Outer(0); 4]; new.len()];
     let mismatch =
         |k: &Key| Error::internal(format!("retriangulation facet {k:?} matches no facet"));
     let (mut a, mut b) = (0, 0);
     while a < facets.len() {
-        let (k, n, i) = facets[a];
-        if a + 1 < facets.len() && facets[a + 1].0 == k {
-            if a + 2 < facets.len() && facets[a + 2].0 == k {
-                return Err(mismatch(&k));
+        let k = facets[a] >> 32;
+        let (n, i) = (
+            (facets[a] as u32 / 4) as usize,
+            (facets[a] as u32 % 4) as usize,
+        );
+        if a + 1 < facets.len() && facets[a + 1] >> 32 == k {
+            if a + 2 < facets.len() && facets[a + 2] >> 32 == k {
+                return Err(mismatch(&unpack_key(facets[a])));
             }
-            let (_, m, j) = facets[a + 1];
+            let (m, j) = (
+                (facets[a + 1] as u32 / 4) as usize,
+                (facets[a + 1] as u32 % 4) as usize,
+            );
             gluing[n][i] = Glue::Inner(m, j);
             gluing[m][j] = Glue::Inner(n, i);
             a += 2;
             continue;
         }
-        if b < outer.len() && outer[b].0 < k {
-            return Err(mismatch(&outer[b].0));
+        if b < outer.len() && outer[b] >> 32 < k {
+            return Err(mismatch(&unpack_key(outer[b])));
         }
-        if b == outer.len() || outer[b].0 != k {
-            return Err(mismatch(&k));
+        if b == outer.len() || outer[b] >> 32 != k {
+            return Err(mismatch(&unpack_key(facets[a])));
         }
-        gluing[n][i] = Glue::Outer(outer[b].1);
+        gluing[n][i] = Glue::Outer(outer[b] as u32);
         b += 1;
         a += 1;
     }
     if b < outer.len() {
-        return Err(mismatch(&outer[b].0));
+        return Err(mismatch(&unpack_key(outer[b])));
     }
     Ok(gluing)
 }
