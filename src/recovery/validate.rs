@@ -20,7 +20,7 @@
 use super::bvh::{Aabb, Bvh};
 use super::by_vertex::ByVertex;
 use crate::error::{Error, Result};
-use crate::predicates::{lex_cmp, orient2d, orient3d, Point, Sign};
+use crate::predicates::{lex_cmp, orient2d, orient3d, BoxFilter, Point, Sign};
 use crate::triangulation::MAX_COORDINATE;
 
 /// Checks `points` and `triangles` (0-based vertex indices); the error names the offending
@@ -271,9 +271,10 @@ fn check_closed(triangles: &[[u32; 3]]) -> Result<()> {
 /// the smallest numbers is named). Only the pairs whose bounding boxes overlap are tested.
 fn check_intersections(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> {
     let mut first: Option<(usize, usize)> = None;
+    let o = bounding_filter(points);
     triangle_hierarchy(points, triangles).for_each_overlapping_pair(|i, j| {
         if first.is_none_or(|f| (i, j) < f)
-            && improper_contact(points, &triangles[i], &triangles[j])
+            && improper_contact(&o, points, &triangles[i], &triangles[j])
         {
             first = Some((i, j));
         }
@@ -288,6 +289,19 @@ fn check_intersections(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()
     }
 }
 
+/// The orientation filter of the box of `points` (all finite).
+fn bounding_filter(points: &[[f64; 3]]) -> BoxFilter {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    BoxFilter::new(&lo, &hi)
+}
+
 /// The bounding-volume hierarchy of the triangles' boxes (item `k` is triangle `k`).
 fn triangle_hierarchy(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Bvh {
     Bvh::new(
@@ -300,22 +314,22 @@ fn triangle_hierarchy(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Bvh {
 
 /// Whether triangles `s` and `t` (proper, distinct, with vertices at distinct positions when
 /// their indices differ) meet other than at their shared vertices and edge.
-fn improper_contact(points: &[[f64; 3]], s: &[u32; 3], t: &[u32; 3]) -> bool {
+fn improper_contact(o: &BoxFilter, points: &[[f64; 3]], s: &[u32; 3], t: &[u32; 3]) -> bool {
     match s.iter().filter(|v| t.contains(v)).count() {
-        0 => closed_triangles_meet(&corners(points, s), &corners(points, t)),
+        0 => closed_triangles_meet(o, &corners(points, s), &corners(points, t)),
         1 => {
             // Rotate both so that the shared vertex comes first.
             let s = rotate_to_front(s, |v| t.contains(&v));
             let t = rotate_to_front(t, |v| v == s[0]);
             let (s, t) = (corners(points, &s), corners(points, &t));
-            meet_beyond_vertex(s[0], [s[1], s[2]], [t[1], t[2]])
+            meet_beyond_vertex(o, s[0], [s[1], s[2]], [t[1], t[2]])
         }
         2 => {
             // Rotate both so that the vertex off the shared edge comes first.
             let s = rotate_to_front(s, |v| !t.contains(&v));
             let t = rotate_to_front(t, |v| !s.contains(&v));
             let (s, t) = (corners(points, &s), corners(points, &t));
-            overlap_across_edge([s[1], s[2]], s[0], t[0])
+            overlap_across_edge(o, [s[1], s[2]], s[0], t[0])
         }
         _ => false,
     }
@@ -337,22 +351,22 @@ fn strictly_one_side(sides: &[Sign]) -> bool {
 /// When they are not coplanar, `s ∩ t` lies on the line where their planes meet, on which each
 /// triangle is a segment whose ends are on its edges; two such segments that overlap do so at
 /// an end of one of them, so the triangles meet exactly when an edge of one meets the other.
-fn closed_triangles_meet(s: &[&Point; 3], t: &[&Point; 3]) -> bool {
-    let t_sides = t.map(|p| orient3d(s[0], s[1], s[2], p));
+fn closed_triangles_meet(o: &BoxFilter, s: &[&Point; 3], t: &[&Point; 3]) -> bool {
+    let t_sides = t.map(|p| o.orient3d(s[0], s[1], s[2], p));
     if strictly_one_side(&t_sides) {
         return false;
     }
     if t_sides.iter().all(|&side| side == Sign::Zero) {
         return coplanar_triangles_meet(s, t);
     }
-    let s_sides = s.map(|p| orient3d(t[0], t[1], t[2], p));
+    let s_sides = s.map(|p| o.orient3d(t[0], t[1], t[2], p));
     if strictly_one_side(&s_sides) {
         return false;
     }
     let edge_meets = |a: &[&Point; 3], sides: &[Sign; 3], b: &[&Point; 3]| {
         (0..3).any(|i| {
             let j = (i + 1) % 3;
-            segment_meets_triangle([a[i], a[j]], [sides[i], sides[j]], b)
+            segment_meets_triangle(o, [a[i], a[j]], [sides[i], sides[j]], b)
         })
     };
     edge_meets(t, &t_sides, s) || edge_meets(s, &s_sides, t)
@@ -360,7 +374,12 @@ fn closed_triangles_meet(s: &[&Point; 3], t: &[&Point; 3]) -> bool {
 
 /// Whether the closed segment `seg` meets the closed triangle `t` (proper), given the sides
 /// of the segment's ends relative to the plane of `t`.
-fn segment_meets_triangle(seg: [&Point; 2], sides: [Sign; 2], t: &[&Point; 3]) -> bool {
+fn segment_meets_triangle(
+    o: &BoxFilter,
+    seg: [&Point; 2],
+    sides: [Sign; 2],
+    t: &[&Point; 3],
+) -> bool {
     let [d, e] = seg;
     if sides[0] == sides[1] {
         return sides[0] == Sign::Zero && coplanar_segment_meets_triangle(d, e, t);
@@ -368,7 +387,7 @@ fn segment_meets_triangle(seg: [&Point; 2], sides: [Sign; 2], t: &[&Point; 3]) -
     // The segment meets the plane at one point, in `t` exactly when the line through `d` and
     // `e` passes on the same side of the three (cyclically oriented) edges, or on one of them.
     // It cannot be on all three lines, which have no common point.
-    let turns = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| orient3d(d, e, t[i], t[j]));
+    let turns = [(0, 1), (1, 2), (2, 0)].map(|(i, j)| o.orient3d(d, e, t[i], t[j]));
     !(turns.contains(&Sign::Positive) && turns.contains(&Sign::Negative))
 }
 
@@ -395,20 +414,20 @@ fn coplanar_segment_meets_triangle(d: &Point, e: &Point, t: &[&Point; 3]) -> boo
 /// When they are not coplanar, `s ∩ t` is a segment from `v` on the line where the planes
 /// meet, longer than a point exactly when the edge opposite `v` of one triangle meets the other.
 /// When they are coplanar, they meet beyond `v` exactly when their angles at `v` overlap.
-fn meet_beyond_vertex(v: &Point, [a, b]: [&Point; 2], [p, q]: [&Point; 2]) -> bool {
-    let pq_sides = [orient3d(v, a, b, p), orient3d(v, a, b, q)];
+fn meet_beyond_vertex(o: &BoxFilter, v: &Point, [a, b]: [&Point; 2], [p, q]: [&Point; 2]) -> bool {
+    let pq_sides = [o.orient3d(v, a, b, p), o.orient3d(v, a, b, q)];
     if strictly_one_side(&pq_sides) {
         return false;
     }
     if pq_sides == [Sign::Zero; 2] {
         return angles_overlap(v, [a, b], [p, q]);
     }
-    let ab_sides = [orient3d(v, p, q, a), orient3d(v, p, q, b)];
+    let ab_sides = [o.orient3d(v, p, q, a), o.orient3d(v, p, q, b)];
     if strictly_one_side(&ab_sides) {
         return false;
     }
-    segment_meets_triangle([a, b], ab_sides, &[v, p, q])
-        || segment_meets_triangle([p, q], pq_sides, &[v, a, b])
+    segment_meets_triangle(o, [a, b], ab_sides, &[v, p, q])
+        || segment_meets_triangle(o, [p, q], pq_sides, &[v, a, b])
 }
 
 /// Whether the angles `a v b` and `p v q`, in one plane, share more than their apex `v`.
@@ -442,8 +461,8 @@ fn on_opposite_rays(v: &Point, r: &Point, x: &Point) -> bool {
 
 /// Whether triangles `u w a` and `u w p` (proper, sharing the edge `u w`) overlap: they are
 /// coplanar with `a` and `p` on the same side of the edge.
-fn overlap_across_edge([u, w]: [&Point; 2], a: &Point, p: &Point) -> bool {
-    if orient3d(u, w, a, p) != Sign::Zero {
+fn overlap_across_edge(o: &BoxFilter, [u, w]: [&Point; 2], a: &Point, p: &Point) -> bool {
+    if o.orient3d(u, w, a, p) != Sign::Zero {
         return false;
     }
     let plane = Projection::of(&[u, w, a]);
