@@ -64,8 +64,8 @@ pub fn refine(
 ) -> Result<()> {
     let mut refiner = Refiner {
         lfs: Vec::new(),
+        surface: Surface::new(protected, mesh.points.len()),
         mesh,
-        protected,
         regions,
         ratio,
         queue: VecDeque::new(),
@@ -76,9 +76,43 @@ pub fn refine(
     refiner.run(n_input)
 }
 
+/// The protected edges and facets as refinement asks for them: a flag per vertex lying on
+/// them answers first, so that the many questions about entities with another vertex (the
+/// refinement's own points above all) need no lookup in the large hash sets, whose random
+/// accesses miss the cache.
+struct Surface<'a> {
+    protected: &'a Protected,
+    on: Vec<bool>,
+}
+
+impl<'a> Surface<'a> {
+    fn new(protected: &'a Protected, vertices: usize) -> Self {
+        let mut on = vec![false; vertices];
+        for &v in protected.edges.iter().flatten() {
+            on[v as usize] = true;
+        }
+        Surface { protected, on }
+    }
+
+    /// Whether every vertex lies on a protected edge (refinement's points lie on none).
+    fn all_on(&self, vertices: &[u32]) -> bool {
+        vertices
+            .iter()
+            .all(|&v| self.on.get(v as usize).copied().unwrap_or(false))
+    }
+
+    fn facet(&self, f: [u32; 3]) -> bool {
+        self.all_on(&f) && self.protected.facet(f)
+    }
+
+    fn edge(&self, a: u32, b: u32) -> bool {
+        self.all_on(&[a, b]) && self.protected.edge(a, b)
+    }
+}
+
 struct Refiner<'a> {
     mesh: &'a mut TetMesh,
-    protected: &'a Protected,
+    surface: Surface<'a>,
     regions: &'a mut Regions,
     ratio: f64,
     /// Protecting-ball radius of every vertex (0 for Steiner points).
@@ -238,14 +272,14 @@ impl Refiner<'_> {
     /// `None` when `c` is beyond one, on one, on a vertex, or the walk does not end.
     fn locate(&self, t: u32, c: &Point) -> Option<u32> {
         let at = self.mesh.walk(t, c, WALK, |_, f, n| {
-            !self.protected.facet(f) && self.regions.kept(n)
+            !self.surface.facet(f) && self.regions.kept(n)
         })?;
         let mut zeros = 0;
         for i in 0..4 {
             let f = self.mesh.facet(at, i);
             let [a, b, d] = f.map(|v| self.mesh.point(v));
             if orient3d(a, b, d, c) == Sign::Zero {
-                if self.protected.facet(f) {
+                if self.surface.facet(f) {
                     return None;
                 }
                 zeros += 1;
@@ -261,7 +295,7 @@ impl Refiner<'_> {
             let q = me.mesh.tets.vertices(n);
             if me.mesh.tets.mark[n as usize] == 7
                 || q.contains(&INFINITE)
-                || me.protected.facet(me.mesh.facet(u, i))
+                || me.surface.facet(me.mesh.facet(u, i))
             {
                 return false;
             }
@@ -306,7 +340,7 @@ impl Refiner<'_> {
             let v = self.mesh.tets.vertices(u);
             for i in 0..4 {
                 let f = self.mesh.facet(u, i);
-                if self.protected.facet(f) {
+                if self.surface.facet(f) {
                     let p = f.map(|x| self.mesh.point(x));
                     let center = triangle_circumcenter(p);
                     if dist2(c, &center) < dist2(p[0], &center) {
@@ -316,7 +350,7 @@ impl Refiner<'_> {
             }
             for i in 0..4 {
                 for j in i + 1..4 {
-                    if self.protected.edge(v[i], v[j]) {
+                    if self.surface.edge(v[i], v[j]) {
                         let (a, b) = (self.mesh.point(v[i]), self.mesh.point(v[j]));
                         if dot(&sub(a, c), &sub(b, c)) < 0.0 {
                             return true;
@@ -486,7 +520,7 @@ impl Refiner<'_> {
     fn flip_if_not_delaunay(&mut self, t: u32, i: usize) -> Result<Option<Vec<u32>>> {
         let (d, [x, y, z]) = self.mesh.with_apex(t, i);
         let n = self.mesh.tets.neighbor(t, i);
-        if self.protected.facet([x, y, z]) || !self.regions.kept(n) {
+        if self.surface.facet([x, y, z]) || !self.regions.kept(n) {
             return Ok(None);
         }
         let e = self.mesh.tets.vertices(n)[(self.mesh.tets.glued(t, i) & 3) as usize];
@@ -513,7 +547,7 @@ impl Refiner<'_> {
     /// The 3-2 flip of edge `(a, b)` of `t` when its shell has three tetrahedra and no
     /// input edge or triangle is lost.
     fn flip32(&mut self, t: u32, a: u32, b: u32) -> Result<Option<Vec<u32>>> {
-        if self.protected.edge(a, b) {
+        if self.surface.edge(a, b) {
             return Ok(None);
         }
         let Some((shell, ring)) = self.mesh.shell(t, a, b, 3) else {
@@ -521,7 +555,7 @@ impl Refiner<'_> {
         };
         if ring.len() != 3
             || ring.contains(&INFINITE)
-            || ring.iter().any(|&w| self.protected.facet([a, b, w]))
+            || ring.iter().any(|&w| self.surface.facet([a, b, w]))
             || !shell.iter().all(|&u| self.regions.kept(u))
         {
             return Ok(None);
@@ -564,11 +598,11 @@ impl Refiner<'_> {
                 if a < n_input {
                     size = size.min(dist(&p, self.mesh.point(a)));
                 }
-                if self.protected.edge(a, b) {
+                if self.surface.edge(a, b) {
                     size = size.min(segment_distance(&p, self.mesh.point(a), self.mesh.point(b)));
                 }
             }
-            if self.protected.facet(f) {
+            if self.surface.facet(f) {
                 size = size.min(triangle_distance(&p, f.map(|x| self.mesh.point(x))));
             }
         }
