@@ -27,9 +27,10 @@
 
 use std::collections::VecDeque;
 
+use super::by_vertex::ByVertex;
 use super::classify::Regions;
 use super::flips::Protected;
-use super::tetmesh::TetMesh;
+use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{circumcenter, dist, dist2, dot, sub, tet_volume, triangle_circumcenter};
 use crate::predicates::{insphere, orient3d, Point, Sign};
@@ -572,41 +573,54 @@ impl Refiner<'_> {
 
     /// The protecting-ball radius of every input vertex (TetGen's feature size with `-Y`):
     /// the distance to the nearest other input vertex, input edge or input triangle of its
-    /// link, the latter two only where the vertex projects inside them.
-    fn protecting_radii(&mut self, n_input: u32) -> Vec<f64> {
-        let mut lfs = vec![0.0; self.mesh.points.len()];
-        for v in 0..n_input {
-            if self.mesh.in_mesh(v) {
-                lfs[v as usize] = self.feature_size(v, n_input);
+    /// link, the latter two only where the vertex projects inside them. One pass over the
+    /// tetrahedra visits every vertex's link, facet by facet (the facet of a tetrahedron
+    /// opposite the vertex); the protected edges and facets are looked up in lists by
+    /// smallest vertex, which the pass meets in memory order.
+    fn protecting_radii(&self, n_input: u32) -> Vec<f64> {
+        let n = self.mesh.points.len();
+        let protected = self.surface.protected;
+        let edges = ByVertex::new(n, protected.edges.iter().map(|&[a, b]| (a, b)));
+        let facets = ByVertex::new(n, protected.facets.iter().map(|&[a, b, c]| (a, [b, c])));
+        let mut lfs: Vec<f64> = (0..n as u32)
+            .map(|v| {
+                if v < n_input && self.mesh.in_mesh(v) {
+                    f64::INFINITY
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        for t in self.mesh.tets.live() {
+            let q = self.mesh.tets.vertices(t);
+            if q.contains(&INFINITE) {
+                continue;
+            }
+            for (i, &v) in q.iter().enumerate() {
+                if v >= n_input {
+                    continue;
+                }
+                let p = self.mesh.point(v);
+                let f = self.mesh.facet(t, i);
+                let mut size = lfs[v as usize];
+                for k in 0..3 {
+                    let (a, b) = (f[k], f[(k + 1) % 3]);
+                    if a < n_input {
+                        size = size.min(dist(p, self.mesh.point(a)));
+                    }
+                    if edges.position(a.min(b), &a.max(b)).is_some() {
+                        size =
+                            size.min(segment_distance(p, self.mesh.point(a), self.mesh.point(b)));
+                    }
+                }
+                let [a, b, c] = key(f);
+                if facets.position(a, &[b, c]).is_some() {
+                    size = size.min(triangle_distance(p, f.map(|x| self.mesh.point(x))));
+                }
+                lfs[v as usize] = size;
             }
         }
         lfs
-    }
-
-    fn feature_size(&mut self, v: u32, n_input: u32) -> f64 {
-        let p = *self.mesh.point(v);
-        let mut size = f64::INFINITY;
-        for t in self.mesh.ball(v) {
-            let q = self.mesh.tets.vertices(t);
-            let i = q.iter().position(|&x| x == v).unwrap_or(0);
-            let f = self.mesh.facet(t, i);
-            if f.contains(&INFINITE) {
-                continue;
-            }
-            for k in 0..3 {
-                let (a, b) = (f[k], f[(k + 1) % 3]);
-                if a < n_input {
-                    size = size.min(dist(&p, self.mesh.point(a)));
-                }
-                if self.surface.edge(a, b) {
-                    size = size.min(segment_distance(&p, self.mesh.point(a), self.mesh.point(b)));
-                }
-            }
-            if self.surface.facet(f) {
-                size = size.min(triangle_distance(&p, f.map(|x| self.mesh.point(x))));
-            }
-        }
-        size
     }
 }
 
