@@ -225,12 +225,12 @@ impl Refiner<'_> {
         };
         // The tetrahedron holding `c` is in its cavity: checked alone first, it declines
         // most encroaching points before the cavity is searched.
-        if split != Split::Centroid && self.encroaches(&[start], &c, split) {
+        if split != Split::Centroid && self.encroaches(&[start], 0, &c, split) {
             return Ok(false);
         }
         let mut cavity = self.cavity(start, &c);
         // `start` comes first in the cavity and was checked above.
-        if split != Split::Centroid && self.encroaches(&cavity[1..], &c, split) {
+        if split != Split::Centroid && self.encroaches(&cavity, 1, &c, split) {
             return Ok(false);
         }
         let full = cavity.len();
@@ -335,37 +335,51 @@ impl Refiner<'_> {
     }
 
     /// Whether `c` lies in the diametral ball of an input triangle bounding the cavity or of
-    /// an input edge in it, or (ratio splits) in the protecting ball of a cavity vertex.
-    fn encroaches(&self, cavity: &[u32], c: &Point, split: Split) -> bool {
+    /// an input edge in it, or (ratio splits) in the protecting ball of a cavity vertex; the
+    /// tetrahedra `cavity[from..]` are looked at (the others were). Input triangles and edges
+    /// can only be on the cavity's boundary: the cavity never crosses an input triangle, and
+    /// the surfaces are closed, so only the boundary facets and their edges are looked up.
+    fn encroaches(&mut self, cavity: &[u32], from: usize, c: &Point, split: Split) -> bool {
         for &u in cavity {
-            let v = self.mesh.tets.vertices(u);
-            for i in 0..4 {
-                let f = self.mesh.facet(u, i);
-                if self.surface.facet(f) {
-                    let p = f.map(|x| self.mesh.point(x));
-                    let center = triangle_circumcenter(p);
-                    if dist2(c, &center) < dist2(p[0], &center) {
+            self.mesh.tets.mark[u as usize] = 7;
+        }
+        let hit = cavity[from..]
+            .iter()
+            .any(|&u| self.encroached_from(u, c, split));
+        for &u in cavity {
+            self.mesh.tets.mark[u as usize] = 0;
+        }
+        hit
+    }
+
+    /// [`Refiner::encroaches`] for one tetrahedron `u` of the marked cavity.
+    fn encroached_from(&self, u: u32, c: &Point, split: Split) -> bool {
+        let v = self.mesh.tets.vertices(u);
+        for i in 0..4 {
+            if self.mesh.tets.mark[self.mesh.tets.neighbor(u, i) as usize] == 7 {
+                continue;
+            }
+            let f = self.mesh.facet(u, i);
+            if self.surface.facet(f) {
+                let p = f.map(|x| self.mesh.point(x));
+                let center = triangle_circumcenter(p);
+                if dist2(c, &center) < dist2(p[0], &center) {
+                    return true;
+                }
+            }
+            for k in 0..3 {
+                let (x, y) = (f[k], f[(k + 1) % 3]);
+                if self.surface.edge(x, y) {
+                    let (a, b) = (self.mesh.point(x), self.mesh.point(y));
+                    if dot(&sub(a, c), &sub(b, c)) < 0.0 {
                         return true;
                     }
                 }
             }
-            for i in 0..4 {
-                for j in i + 1..4 {
-                    if self.surface.edge(v[i], v[j]) {
-                        let (a, b) = (self.mesh.point(v[i]), self.mesh.point(v[j]));
-                        if dot(&sub(a, c), &sub(b, c)) < 0.0 {
-                            return true;
-                        }
-                    }
-                }
-                if split == Split::Ratio
-                    && dist(c, self.mesh.point(v[i])) <= self.lfs[v[i] as usize]
-                {
-                    return true;
-                }
-            }
         }
-        false
+        split == Split::Ratio
+            && v.iter()
+                .any(|&x| dist(c, self.mesh.point(x)) <= self.lfs[x as usize])
     }
 
     /// Whether `c` would be joined to a vertex of the cavity's boundary `cone` by an edge
