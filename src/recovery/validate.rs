@@ -291,14 +291,7 @@ fn check_intersections(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()
 
 /// The orientation filter of the box of `points` (all finite).
 fn bounding_filter(points: &[[f64; 3]]) -> BoxFilter {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
+    let (lo, hi) = crate::triangulation::bounding_box(points);
     BoxFilter::new(&lo, &hi)
 }
 

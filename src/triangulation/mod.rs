@@ -324,7 +324,7 @@ fn too_few(n: usize, what: &str) -> Error {
 }
 
 /// The smallest box containing the points.
-fn bounding_box(points: &[[f64; 3]]) -> (Point, Point) {
+pub(crate) fn bounding_box(points: &[[f64; 3]]) -> (Point, Point) {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in points {
