@@ -7,8 +7,10 @@
 //! diagonal across that plane, which generalizes the fan from `a` and, when `b` is in the
 //! ring, is the 2-2 flip in the plane that coplanar input (grids, planar CAD faces) needs.
 //! The same is tried from `b`. When neither end can advance, the edges of the first crossed
-//! facets are removed (any valid ring triangulation), which changes the stars without
-//! advancing, until the first crossings repeat or a bounded number of times.
+//! facets are removed (any valid ring triangulation, shrinking rings some levels deep as
+//! TetGen's `flipnm` does), which changes the stars without advancing, until the first
+//! crossings repeat or a bounded number of times. Edges still missing are tried again one
+//! level deeper, down to [`DEEPEST`].
 
 use super::flips::{flip23, remove_edge, remove_edge_deep, Protected};
 use super::tetmesh::{key, TetMesh};
@@ -19,10 +21,14 @@ use crate::triangulation::tets::INFINITE;
 /// Most flips tried on one edge before it is declared stuck.
 const MAX_FLIPS: usize = 256;
 
-/// How deep [`remove_edge_deep`] goes to unblock a star, and how many edge removals each
-/// unblocking tries.
-const DEPTH: u32 = 3;
+/// How deep [`remove_edge_deep`] goes to unblock a star at the first attempt on an edge, and
+/// how many edge removals each unblocking tries then; each level deeper doubles them.
+pub const DEPTH: u32 = 3;
 const BUDGET: usize = 256;
+
+/// The deepest level at which the main recovery tries again the edges still missing, before
+/// it adds points (TetGen raises its flip level the same way, while missing segments remain).
+pub const DEEPEST: u32 = 5;
 
 /// What the segment from a vertex meets first, leaving that vertex's star.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -73,9 +79,15 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
 
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
 /// Crossings are looked up again after every attempt that may have changed the mesh.
-/// Unblocking ([`unblock`]) stops when it meets the first crossings from both ends it met
-/// before (its flips went round in a circle).
-pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -> Result<bool> {
+/// Unblocking ([`unblock`]) removes edges `depth` levels deep, and stops when it meets the
+/// first crossings from both ends it met before (its flips went round in a circle).
+pub fn recover_edge(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    a: u32,
+    b: u32,
+    depth: u32,
+) -> Result<bool> {
     let mut seen = rustc_hash::FxHashSet::default();
     'flips: for _ in 0..MAX_FLIPS {
         // A failed advance changes nothing: its crossings still hold after both failed.
@@ -93,14 +105,14 @@ pub fn recover_edge(mesh: &mut TetMesh, protected: &Protected, a: u32, b: u32) -
             // The unblocking flips went round in a circle.
             return Ok(false);
         }
-        if unblock(mesh, protected, crossings[0])? {
+        if unblock(mesh, protected, crossings[0], depth)? {
             continue;
         }
         // A failed unblocking may keep flips: the crossing from b is looked up again.
         let Some(c) = crossing_off_vertices(mesh, b, a)? else {
             return Ok(true);
         };
-        if !unblock(mesh, protected, c)? {
+        if !unblock(mesh, protected, c, depth)? {
             return Ok(false);
         }
     }
@@ -170,21 +182,22 @@ fn not_across(x: u32, y: u32, start: u32) -> impl Fn(&TetMesh, u32, u32) -> bool
 }
 
 /// Removes one edge of the first crossed facet, or the crossed edge, whatever the ring
-/// triangulation, to change the star that blocks [`advance`].
-fn unblock(mesh: &mut TetMesh, protected: &Protected, c: Crossing) -> Result<bool> {
+/// triangulation, `depth` levels deep, to change the star that blocks [`advance`].
+fn unblock(mesh: &mut TetMesh, protected: &Protected, c: Crossing, depth: u32) -> Result<bool> {
     let any = |_: &TetMesh, _: u32, _: u32| true;
+    let budget = BUDGET << (depth - DEPTH);
     match c {
         Crossing::Facet(t, i) => {
             let (_, [x, y, z]) = mesh.with_apex(t, i);
             for e in [[x, y], [y, z], [z, x]] {
-                if remove_edge_deep(mesh, protected, e, &any, DEPTH, &mut BUDGET.to_owned())? {
+                if remove_edge_deep(mesh, protected, e, &any, depth, &mut budget.to_owned())? {
                     return Ok(true);
                 }
             }
             Ok(false)
         }
         Crossing::Edge(e, _) => {
-            remove_edge_deep(mesh, protected, e, &any, DEPTH, &mut BUDGET.to_owned())
+            remove_edge_deep(mesh, protected, e, &any, depth, &mut budget.to_owned())
         }
         Crossing::Vertex(_) => Ok(false),
     }

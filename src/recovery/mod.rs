@@ -109,7 +109,12 @@ pub fn tetrahedralize_surface(
     }
     let mut mesh = enclosed_delaunay(points, &bounding, &isolated)?;
     let mut part = Partition::new(&bounding);
-    recover(&mut mesh, &mut part, 16 * bounding.len() + 1024)?;
+    recover(
+        &mut mesh,
+        &mut part,
+        16 * bounding.len() + 1024,
+        edges::DEEPEST,
+    )?;
     let normals: Vec<Point> = bounding.iter().map(|f| unit_normal(points, *f)).collect();
     suppress::suppress_all(&mut mesh, &mut part, &normals, tris.len())?;
     suppress::merge_interior(&mut mesh, &part.protected, points.len() as u32 + 8)?;
@@ -143,8 +148,15 @@ pub fn tetrahedralize_surface(
 
 /// Recovers every subface (§5.2): sub-edges first, then subfaces, by flips; where flips
 /// fail, a point is added on the surface at the first crossing and the loop starts again
-/// with the new, smaller pieces. At most `budget` points are added.
-fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize) -> Result<()> {
+/// with the new, smaller pieces. At most `budget` points are added. Sub-edges the flips
+/// leave missing are tried again with edge removals one level deeper each time, down to
+/// `deepest` ([`edges::DEPTH`] for none), before points are added for them.
+fn recover(
+    mesh: &mut TetMesh,
+    part: &mut Partition,
+    mut budget: usize,
+    deepest: u32,
+) -> Result<()> {
     // What is recovered stays: flips never destroy a protected edge or facet.
     let (mut edges_done, present) = mesh.present(&part.protected);
     let mut faces_done: HashSet<[u32; 3]> =
@@ -156,18 +168,23 @@ fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize) -> Resul
             .filter(|f| present.contains(&tetmesh::key(*f))),
     );
     loop {
-        let pending: Vec<[u32; 2]> = part
+        let mut stuck: Vec<[u32; 2]> = part
             .subedges()
             .into_iter()
             .filter(|e| !edges_done.contains(e))
             .collect();
-        let stuck = until_stable(pending, |&[a, b]| {
-            let done = edges::recover_edge(mesh, &part.protected, a, b)?;
-            if done {
-                edges_done.insert([a, b]);
+        for depth in edges::DEPTH..=deepest {
+            if stuck.is_empty() {
+                break;
             }
-            Ok(done)
-        })?;
+            stuck = until_stable(stuck, |&[a, b]| {
+                let done = edges::recover_edge(mesh, &part.protected, a, b, depth)?;
+                if done {
+                    edges_done.insert([a, b]);
+                }
+                Ok(done)
+            })?;
+        }
         if !stuck.is_empty() {
             for [a, b] in stuck {
                 spend(&mut budget, || format!("sub-edge ({a}, {b})"))?;
@@ -207,7 +224,7 @@ fn recover(mesh: &mut TetMesh, part: &mut Partition, mut budget: usize) -> Resul
 fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
     let mut mesh = enclosed_delaunay(points, triangles, &[]).ok()?;
     let mut part = Partition::new(triangles);
-    recover(&mut mesh, &mut part, 0).ok()?;
+    recover(&mut mesh, &mut part, 0, edges::DEPTH).ok()?;
     let n = points.len() as u32;
     let start = mesh.search_ball(n, |_, t| Some(t))?;
     let mut outside = vec![false; mesh.tets.slots()];
