@@ -92,10 +92,21 @@ pub fn remove_edge(
     let Some((shell, ring)) = mesh.shell(t, a, b, MAX_SHELL) else {
         return Ok(false);
     };
+    remove_shell(mesh, protected, [a, b], (&shell, &ring), allowed)
+}
+
+/// [`remove_edge`] of the unprotected edge `(a, b)` whose shell and ring are given.
+fn remove_shell(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    [a, b]: [u32; 2],
+    (shell, ring): (&[u32], &[u32]),
+    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+) -> Result<bool> {
     if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
         return Ok(false);
     }
-    let Some(triangles) = best_ring_triangulation(mesh, [a, b], &ring, allowed) else {
+    let Some(triangles) = best_ring_triangulation(mesh, [a, b], ring, allowed) else {
         return Ok(false);
     };
     let mut new = Vec::with_capacity(2 * triangles.len());
@@ -104,7 +115,7 @@ pub fn remove_edge(
         new.push([a, wj, wi, wk]);
         new.push([b, wj, wk, wi]);
     }
-    mesh.replace(&shell, &new)?;
+    mesh.replace(shell, &new)?;
     Ok(true)
 }
 
@@ -126,19 +137,20 @@ pub fn remove_edge_deep(
             return Ok(false);
         }
         *budget -= 1;
-        if remove_edge(mesh, protected, [a, b], allowed)? {
-            return Ok(true);
-        }
-        if level == 0 || protected.edge(a, b) {
+        if protected.edge(a, b) {
             return Ok(false);
         }
+        // Gone: flipped away by a shrinking step of a previous pass (level 0 has none).
         let Some(t) = mesh.find_edge(a, b) else {
-            return Ok(true);
+            return Ok(level > 0);
         };
         let Some((shell, ring)) = mesh.shell(t, a, b, MAX_SHELL) else {
             return Ok(false);
         };
-        if ring.len() <= 3 || ring.contains(&INFINITE) {
+        if remove_shell(mesh, protected, [a, b], (&shell, &ring), allowed)? {
+            return Ok(true);
+        }
+        if level == 0 || ring.len() <= 3 || ring.contains(&INFINITE) {
             return Ok(false);
         }
         let mut shrunk = false;
