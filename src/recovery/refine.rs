@@ -34,7 +34,7 @@ use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{circumcenter, dist, dist2, dot, sub, tet_volume, triangle_circumcenter};
 use crate::predicates::{insphere, orient3d, Point, Sign};
-use crate::triangulation::tets::INFINITE;
+use crate::triangulation::tets::{FACE, INFINITE};
 
 /// Steps of a point-location walk before it gives up.
 const WALK: usize = 1 << 16;
@@ -367,13 +367,12 @@ impl Refiner<'_> {
                     return true;
                 }
             }
+            // The diametral-ball test first: it is cheaper than the lookup and rarely holds.
             for k in 0..3 {
                 let (x, y) = (f[k], f[(k + 1) % 3]);
-                if self.surface.edge(x, y) {
-                    let (a, b) = (self.mesh.point(x), self.mesh.point(y));
-                    if dot(&sub(a, c), &sub(b, c)) < 0.0 {
-                        return true;
-                    }
+                let (a, b) = (self.mesh.point(x), self.mesh.point(y));
+                if dot(&sub(a, c), &sub(b, c)) < 0.0 && self.surface.edge(x, y) {
+                    return true;
                 }
             }
         }
@@ -610,31 +609,51 @@ impl Refiner<'_> {
             if q.contains(&INFINITE) {
                 continue;
             }
+            // Each of the six edges is measured and looked up once for the four links.
+            let point = |k: usize| self.mesh.point(q[k]);
+            let lengths = EDGES.map(|[i, j]| {
+                if q[i] < n_input && q[j] < n_input {
+                    dist(point(i), point(j))
+                } else {
+                    f64::INFINITY
+                }
+            });
+            let protected =
+                EDGES.map(|[i, j]| edges.position(q[i].min(q[j]), &q[i].max(q[j])).is_some());
             for (i, &v) in q.iter().enumerate() {
                 if v >= n_input {
                     continue;
                 }
-                let p = self.mesh.point(v);
-                let f = self.mesh.facet(t, i);
+                let p = point(i);
                 let mut size = lfs[v as usize];
                 for k in 0..3 {
-                    let (a, b) = (f[k], f[(k + 1) % 3]);
-                    if a < n_input {
-                        size = size.min(dist(p, self.mesh.point(a)));
-                    }
-                    if edges.position(a.min(b), &a.max(b)).is_some() {
-                        size =
-                            size.min(segment_distance(p, self.mesh.point(a), self.mesh.point(b)));
+                    let (x, y) = (FACE[i][k], FACE[i][(k + 1) % 3]);
+                    size = size.min(lengths[edge_index(i, x)]);
+                    if protected[edge_index(x, y)] {
+                        size = size.min(segment_distance(p, point(x), point(y)));
                     }
                 }
+                let f = FACE[i].map(|k| q[k]);
                 let [a, b, c] = key(f);
                 if facets.position(a, &[b, c]).is_some() {
-                    size = size.min(triangle_distance(p, f.map(|x| self.mesh.point(x))));
+                    size = size.min(triangle_distance(p, FACE[i].map(point)));
                 }
                 lfs[v as usize] = size;
             }
         }
         lfs
+    }
+}
+
+/// The six edges of a tetrahedron, by local vertex indices.
+const EDGES: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
+
+/// The position in [`EDGES`] of the edge joining local vertices `i` and `j`.
+fn edge_index(i: usize, j: usize) -> usize {
+    match (i.min(j), i.max(j)) {
+        (0, k) => k - 1,
+        (1, k) => k + 1,
+        _ => 5,
     }
 }
 
