@@ -1,8 +1,18 @@
 //! Items grouped by a vertex number with a counting sort: the protected edges and facets by
 //! their smallest vertex (`tetmesh`), the input triangles by their smallest vertex
 //! (`classify`) and by each of their vertices (`partition`), the input's edges and triangles
-//! (`validate`). Linear in the items, and a vertex's items are contiguous, in input order. Invariant: `start` is nondecreasing,
-//! `start[0] = 0`, `start[n] = items.len()`.
+//! (`validate`). Linear in the items, and a vertex's items are contiguous, in input order.
+//! Invariant: `start` is nondecreasing, `start[0] = 0`, `start[n] = items.len()`.
+
+/// One more than the largest vertex number the triangles use: the vertex count to group
+/// their items by.
+pub fn vertex_count(triangles: &[[u32; 3]]) -> usize {
+    triangles
+        .iter()
+        .flatten()
+        .max()
+        .map_or(0, |&v| v as usize + 1)
+}
 
 /// Items grouped by a vertex: the items of vertex `a` are `items[start[a]..start[a + 1]]`
 /// (a counting sort); vertices out of range (the infinite vertex) have none.
@@ -29,9 +39,9 @@ impl<T: Copy + Default + PartialEq> ByVertex<T> {
         ByVertex { start, items }
     }
 
-    /// The items of vertex `a`.
-    pub fn of(&self, a: usize) -> &[T] {
-        &self.items[self.start[a] as usize..self.start[a + 1] as usize]
+    /// The items of vertex `a` (none out of range).
+    pub fn of(&self, a: u32) -> &[T] {
+        &self.items[self.range(a)]
     }
 
     /// The number of vertices.
@@ -60,7 +70,7 @@ impl<T: Copy + Default + PartialEq> ByVertex<T> {
 
     /// The first item of `a` that `is` accepts.
     pub fn find(&self, a: u32, is: impl Fn(&T) -> bool) -> Option<&T> {
-        self.items[self.range(a)].iter().find(|x| is(x))
+        self.of(a).iter().find(|x| is(x))
     }
 
     /// Every item's vertex and index in `items`, by vertex.

@@ -140,7 +140,8 @@ pub fn remove_edge_deep(
         if protected.edge(a, b) {
             return Ok(false);
         }
-        // Gone: flipped away by a shrinking step of a previous pass (level 0 has none).
+        // Gone (flips made since the caller saw it, or a shrinking pass here): reported as
+        // removed when this call may shrink, so that the caller looks at its shell again.
         let Some(t) = mesh.find_edge(a, b) else {
             return Ok(level > 0);
         };

@@ -11,7 +11,7 @@
 
 use rustc_hash::FxHashMap as HashMap;
 
-use super::by_vertex::ByVertex;
+use super::by_vertex::{vertex_count, ByVertex};
 use super::flips::Protected;
 use super::tetmesh::key;
 
@@ -49,11 +49,7 @@ pub fn sides(f: [u32; 3]) -> [[u32; 2]; 3] {
 
 impl Partition {
     pub fn new(triangles: &[[u32; 3]]) -> Self {
-        let vertices = triangles
-            .iter()
-            .flatten()
-            .max()
-            .map_or(0, |&v| v as usize + 1);
+        let vertices = vertex_count(triangles);
         let incidences = triangles
             .iter()
             .enumerate()
@@ -74,7 +70,7 @@ impl Partition {
     }
 
     /// The subfaces of input triangle `f`.
-    pub fn subfaces(&self, f: usize) -> &[[u32; 3]] {
+    fn subfaces(&self, f: usize) -> &[[u32; 3]] {
         self.split
             .get(&f)
             .map_or(std::slice::from_ref(&self.input[f]), Vec::as_slice)
@@ -119,12 +115,7 @@ impl Partition {
 
     /// The input triangles around input vertex `v`.
     fn faces_of_vertex(&self, v: u32) -> impl Iterator<Item = u32> + '_ {
-        let list = if (v as usize) < self.vertex_faces.vertices() {
-            self.vertex_faces.of(v as usize)
-        } else {
-            &[]
-        };
-        list.iter().copied()
+        self.vertex_faces.of(v).iter().copied()
     }
 
     /// The input triangles around input edge `e`.

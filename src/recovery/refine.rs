@@ -588,8 +588,8 @@ impl Refiner<'_> {
     /// the distance to the nearest other input vertex, input edge or input triangle of its
     /// link, the latter two only where the vertex projects inside them. One pass over the
     /// tetrahedra visits every vertex's link, facet by facet (the facet of a tetrahedron
-    /// opposite the vertex); the protected edges and facets are looked up in lists by
-    /// smallest vertex, which the pass meets in memory order.
+    /// opposite the vertex), and looks up the protected edges and facets in lists by
+    /// smallest vertex.
     fn protecting_radii(&self, n_input: u32) -> Vec<f64> {
         let n = self.mesh.points.len();
         let protected = self.surface.protected;

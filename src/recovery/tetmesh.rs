@@ -529,21 +529,17 @@ fn match_facets(outer: &[(Key, u32)], new: &[[u32; 4]]) -> Result<Vec<[Glue; 4]>
     let mut gluing = vec![[Glue::Outer(0); 4]; new.len()];
     let mismatch =
         |k: &Key| Error::internal(format!("retriangulation facet {k:?} matches no facet"));
+    // The new tetrahedron and facet a packed facet of `new` names.
+    let slot = |x: u128| ((x as u32 / 4) as usize, (x as u32 % 4) as usize);
     let (mut a, mut b) = (0, 0);
     while a < facets.len() {
         let k = facets[a] >> 32;
-        let (n, i) = (
-            (facets[a] as u32 / 4) as usize,
-            (facets[a] as u32 % 4) as usize,
-        );
+        let (n, i) = slot(facets[a]);
         if a + 1 < facets.len() && facets[a + 1] >> 32 == k {
             if a + 2 < facets.len() && facets[a + 2] >> 32 == k {
                 return Err(mismatch(&unpack_key(facets[a])));
             }
-            let (m, j) = (
-                (facets[a + 1] as u32 / 4) as usize,
-                (facets[a + 1] as u32 % 4) as usize,
-            );
+            let (m, j) = slot(facets[a + 1]);
             gluing[n][i] = Glue::Inner(m, j);
             gluing[m][j] = Glue::Inner(n, i);
             a += 2;

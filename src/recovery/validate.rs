@@ -18,7 +18,7 @@
 //! can be meshed and leaves the others out.
 
 use super::bvh::{Aabb, Bvh};
-use super::by_vertex::ByVertex;
+use super::by_vertex::{vertex_count, ByVertex};
 use crate::error::{Error, Result};
 use crate::predicates::{lex_cmp, orient2d, orient3d, BoxFilter, Point, Sign};
 use crate::triangulation::MAX_COORDINATE;
@@ -203,7 +203,7 @@ fn check_duplicates(triangles: &[[u32; 3]]) -> Result<()> {
     let mut group = Vec::new();
     for a in 0..by_vertex.vertices() {
         group.clear();
-        group.extend_from_slice(by_vertex.of(a));
+        group.extend_from_slice(by_vertex.of(a as u32));
         group.sort_unstable();
         for w in group.windows(2).filter(|w| w[0].0 == w[1].0) {
             let found = (w[0].1, w[1].1);
@@ -223,15 +223,6 @@ fn check_duplicates(triangles: &[[u32; 3]]) -> Result<()> {
     }
 }
 
-/// One more than the largest vertex number the triangles use.
-fn vertex_count(triangles: &[[u32; 3]]) -> usize {
-    triangles
-        .iter()
-        .flatten()
-        .max()
-        .map_or(0, |&v| v as usize + 1)
-}
-
 /// Fails when an edge belongs to a single triangle (the one with the smallest number is named,
 /// then the smallest edge).
 fn check_closed(triangles: &[[u32; 3]]) -> Result<()> {
@@ -247,7 +238,7 @@ fn check_closed(triangles: &[[u32; 3]]) -> Result<()> {
     let mut group = Vec::new();
     for a in 0..by_vertex.vertices() {
         group.clear();
-        group.extend_from_slice(by_vertex.of(a));
+        group.extend_from_slice(by_vertex.of(a as u32));
         group.sort_unstable();
         for (i, &(b, k)) in group.iter().enumerate() {
             let alone =
