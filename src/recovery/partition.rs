@@ -148,6 +148,15 @@ impl Partition {
         Host::Face(common.first().copied().unwrap_or(0))
     }
 
+    /// Whether the three vertices of `t` lie on one input edge: a flat subface.
+    pub fn on_one_edge(&self, t: [u32; 3]) -> bool {
+        let on = |w: u32, e: [u32; 2]| e.contains(&w) || self.host.get(&w) == Some(&Host::Edge(e));
+        t.iter().any(|v| match self.host.get(v) {
+            Some(&Host::Edge(e)) => t.iter().all(|&w| on(w, e)),
+            _ => false,
+        })
+    }
+
     /// Every current sub-edge, sorted.
     pub fn subedges(&self) -> Vec<[u32; 2]> {
         let mut e: Vec<[u32; 2]> = self.protected.edges.iter().copied().collect();

@@ -6,13 +6,17 @@
 //! The point is computed in floating point, so it lies on the surface only up to rounding;
 //! which input edge or triangle it belongs to is recorded combinatorially
 //! ([`super::partition`]). The cone is accepted only if every new tetrahedron is positive.
+//! Where no set around the crossing is star-shaped from the rounded point, the tetrahedra
+//! whose closure holds it are split instead ([`holding`]); where the crossing rounds onto
+//! the sub-edge's end, its midpoint is added.
 
 use super::edges::Crossing;
 use super::partition::Partition;
 use super::tetmesh::TetMesh;
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{add, cross, dot, sub};
-use crate::predicates::Point;
+use crate::predicates::{orient3d, Point, Sign};
+use crate::triangulation::tets::INFINITE;
 
 fn scale(u: &Point, s: f64) -> Point {
     [u[0] * s, u[1] * s, u[2] * s]
@@ -34,14 +38,23 @@ fn line_line(p: &Point, q: &Point, x: &Point, y: &Point) -> Point {
     add(p, &scale(&d1, s))
 }
 
+fn midpoint(u: &Point, v: &Point) -> Point {
+    [0, 1, 2].map(|k| 0.5 * (u[k] + v[k]))
+}
+
 fn failure(what: String) -> Error {
     Error::new(ErrorKind::Limit, what)
 }
 
 /// Replaces the tetrahedra `set`, or failing that `set` grown by its neighbours across
 /// unprotected facets (at most [`GROWTH`] times: the rounded point may fall just outside
-/// `set`), by the cone from the new point `p` over their boundary.
+/// `set`), by the cone from the new point `p` over their boundary. Last, the tetrahedra
+/// around the rounded point itself ([`holding`]) are split: where the surface is planar and
+/// the points already added on it are rounded off its plane, the crossing can lie beyond a
+/// plane through the segment's start by less than any rounding, and no set around the
+/// crossing is star-shaped from the rounded point.
 fn cone(mesh: &mut TetMesh, part: &Partition, set: &[u32], p: Point) -> Result<Option<u32>> {
+    let start = set[0];
     let mut set = set.to_vec();
     for _ in 0..=GROWTH {
         if let Some(s) = cone_over(mesh, &set, p)? {
@@ -49,7 +62,43 @@ fn cone(mesh: &mut TetMesh, part: &Partition, set: &[u32], p: Point) -> Result<O
         }
         set = grown(mesh, part, &set);
     }
-    Ok(None)
+    match holding(mesh, part, start, &p) {
+        Some(set) => cone_over(mesh, &set, p),
+        None => Ok(None),
+    }
+}
+
+/// Longest walk [`holding`] takes (from the crossing to the sub-edge's midpoint, it can go
+/// far).
+const WALK: usize = 4096;
+
+/// The tetrahedra whose closure holds `p`, found by a visibility walk from `t`: the one
+/// holding it inside, or those around the facet or edge holding it. The walk may cross the
+/// surface, which `p` is on only up to rounding. `None` when that facet or edge is
+/// protected, `p` is at a vertex, or the walk stops.
+fn holding(mesh: &TetMesh, part: &Partition, t: u32, p: &Point) -> Option<Vec<u32>> {
+    let protected = |f: [u32; 3]| part.protected.facet(f);
+    let at = mesh.walk(t, p, WALK, |m, _, n| {
+        !m.tets.vertices(n).contains(&INFINITE)
+    })?;
+    let on: Vec<usize> = (0..4)
+        .filter(|&i| {
+            let [a, b, c] = mesh.facet(at, i).map(|v| mesh.point(v));
+            orient3d(a, b, c, p) == Sign::Zero
+        })
+        .collect();
+    match on[..] {
+        [] => Some(vec![at]),
+        [i] if !protected(mesh.facet(at, i)) => Some(vec![at, mesh.tets.neighbor(at, i)]),
+        [i, j] => {
+            let [x, y] = mesh.others(at, mesh.tets.vertices(at)[i], mesh.tets.vertices(at)[j]);
+            if part.protected.edge(x, y) {
+                return None;
+            }
+            mesh.shell(at, x, y, usize::MAX).map(|(shell, _)| shell)
+        }
+        _ => None,
+    }
 }
 
 /// How many times [`cone`] grows its set.
@@ -143,7 +192,18 @@ pub fn split_subedge(
         }
         Crossing::Vertex(v) => return Err(super::edges::vertex_on_edge(mesh, v, [p, q])),
     };
-    match cone(mesh, part, &set, point)? {
+    let added = match cone(mesh, part, &set, point)? {
+        Some(s) => Some(s),
+        // The crossing rounded onto an end of the sub-edge.
+        None => {
+            let m = midpoint(&pp, &pq);
+            match holding(mesh, part, set[0], &m) {
+                Some(around) => cone_over(mesh, &around, m)?,
+                None => None,
+            }
+        }
+    };
+    match added {
         Some(s) => {
             part.split_edge(p, q, s);
             Ok(())

@@ -12,6 +12,12 @@
 //! the piece's side normals, then toward the centroid of the piece's vertices, then between
 //! the two, halving the distance until every new tetrahedron is positive.
 //!
+//! Points added on a planar face are rounded off its plane, and where many crowd there the
+//! move can find no place: the point is then merged on the surface into a neighbour on the
+//! same input triangle or edge (the paper's merging, [`collapse_on_surface`]), and a point
+//! that can do neither is tried again after the others. The outline is triangulated without
+//! flat triangles (three points of one input edge, which rounding may show as a sliver).
+//!
 //! The interior points then go where they can ([`merge_interior`]): collapsed onto a
 //! neighbour (the paper's merging), or removed by filling their star, or their star and a few
 //! layers around it, again without them: the recovery of the region's boundary, with no point
@@ -24,7 +30,7 @@ use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{add, dist, norm, sub};
-use crate::io::surface::triangulate_polygon;
+use crate::io::surface::triangulate_polygon_avoiding;
 use crate::predicates::Point;
 
 /// Halvings of the move before giving up.
@@ -61,10 +67,26 @@ pub fn suppress_all(
     }
     inside.sort_unstable();
     on_edges.sort_unstable();
-    for v in inside.into_iter().chain(on_edges) {
-        suppress(mesh, part, normals, v)?;
+    // A point that cannot leave may after its neighbours have: passes while some leave.
+    let mut pending: Vec<u32> = inside.into_iter().chain(on_edges).collect();
+    loop {
+        let mut failed = Vec::new();
+        let mut first_error = None;
+        for &v in &pending {
+            match suppress(mesh, part, normals, v) {
+                Err(e) if e.kind == ErrorKind::Limit => {
+                    failed.push(v);
+                    first_error.get_or_insert(e);
+                }
+                result => result?,
+            }
+        }
+        match first_error {
+            None => return Ok(()),
+            Some(e) if failed.len() == pending.len() => return Err(e),
+            Some(_) => pending = failed,
+        }
     }
-    Ok(())
 }
 
 fn failure(message: String) -> Error {
@@ -104,17 +126,95 @@ fn patch(mesh: &TetMesh, part: &Partition, face: usize, p: u32) -> Result<Patch>
         )));
     }
     let mut flat = Vec::new();
-    triangulate_polygon(&mesh.points, &outline, &mut flat).map_err(|why| {
-        failure(format!(
-            "the outline of point {p} in triangle {face} cannot be triangulated: {why}"
-        ))
-    })?;
+    let on_one_edge = |t: [u32; 3]| part.on_one_edge(t);
+    triangulate_polygon_avoiding(&mesh.points, &outline, &on_one_edge, &mut flat).map_err(
+        |why| {
+            failure(format!(
+                "the outline of point {p} in triangle {face} cannot be triangulated: {why}"
+            ))
+        },
+    )?;
     let new = flat.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
     Ok(Patch { face, old, new })
 }
 
-/// Moves point `p` off the surface.
+/// Moves point `p` off the surface; where no move makes every new tetrahedron positive,
+/// merges it on the surface into a neighbour ([`collapse_on_surface`]).
 fn suppress(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32) -> Result<()> {
+    let added = mesh.points.len();
+    match move_off(mesh, part, normals, p) {
+        Err(e) if e.kind == ErrorKind::Limit => {
+            while mesh.points.len() > added {
+                mesh.pop_point();
+            }
+            if collapse_on_surface(mesh, part, p)? {
+                Ok(())
+            } else {
+                Err(e)
+            }
+        }
+        result => result,
+    }
+}
+
+/// Merges point `p` of the partition into a neighbour `o` on every input triangle through
+/// it (George and Borouchaki §5.3, merging): `o` is a vertex of `p`'s subfaces that lies on
+/// the same input triangle, or on the same input edge when `p` does. Every subface and
+/// tetrahedron through `p` takes `o` in its place, those through both vanish; the nearest `o`
+/// for which every new tetrahedron is positive is taken. `false` when there is none.
+fn collapse_on_surface(mesh: &mut TetMesh, part: &mut Partition, p: u32) -> Result<bool> {
+    let faces = part.faces_of(p);
+    let fans: Vec<Vec<[u32; 3]>> = faces.iter().map(|&f| part.fan(f, p)).collect();
+    let mut candidates: Vec<u32> = fans.iter().flatten().flatten().copied().collect();
+    candidates.sort_unstable();
+    candidates.dedup();
+    let host = part.host.get(&p).copied();
+    candidates.retain(|&o| match host {
+        Some(Host::Edge(e)) => o != p && (e.contains(&o) || part.host.get(&o) == host.as_ref()),
+        _ => o != p,
+    });
+    let at = *mesh.point(p);
+    candidates.sort_by(|&a, &b| dist(&at, mesh.point(a)).total_cmp(&dist(&at, mesh.point(b))));
+    let ball = mesh.ball(p);
+    for o in candidates {
+        let flat = fans
+            .iter()
+            .flatten()
+            .any(|&s| !s.contains(&o) && part.on_one_edge(renamed(s, p, o)));
+        if flat {
+            continue;
+        }
+        let new: Vec<[u32; 4]> = ball
+            .iter()
+            .map(|&t| mesh.tets.vertices(t))
+            .filter(|q| !q.contains(&o))
+            .map(|q| renamed(q, p, o))
+            .collect();
+        if !new.iter().all(|&q| mesh.positive(q)) || mesh.try_replace(&ball, &new)?.is_none() {
+            continue;
+        }
+        for (&f, old) in faces.iter().zip(&fans) {
+            let kept: Vec<[u32; 3]> = old
+                .iter()
+                .filter(|s| !s.contains(&o))
+                .map(|&s| renamed(s, p, o))
+                .collect();
+            part.retriangulate(f, old, &kept);
+        }
+        part.host.remove(&p);
+        mesh.forget(p);
+        return Ok(true);
+    }
+    Ok(false)
+}
+
+/// `q` with vertex `p` renamed `o`.
+fn renamed<const N: usize>(q: [u32; N], p: u32, o: u32) -> [u32; N] {
+    q.map(|v| if v == p { o } else { v })
+}
+
+/// Moves point `p` off the surface: one copy into each piece of its star.
+fn move_off(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32) -> Result<()> {
     let faces = part.faces_of(p);
     let patches: Vec<Patch> = faces
         .iter()

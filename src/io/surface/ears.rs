@@ -20,12 +20,12 @@ use crate::predicates::{orient2d, Point, Sign};
 
 /// Appends to `triangles` the triangles of the face bounded by the polygon `outer` and the
 /// polygons `inner` inside it (indices into `points`), projected along `axis`. The triangles
-/// have the orientation of `outer`.
+/// have the orientation of `outer`; none has corners that `flat` accepts.
 pub(super) fn triangulate(
     points: &[Point],
     axis: usize,
-    outer: &[u32],
-    inner: &[Vec<u32>],
+    (outer, inner): (&[u32], &[Vec<u32>]),
+    flat: &dyn Fn([u32; 3]) -> bool,
     triangles: &mut Vec<u32>,
 ) -> Result<(), String> {
     let mut ring = Ring::default();
@@ -45,7 +45,7 @@ pub(super) fn triangulate(
         holes.push(ring.add_loop(points, axis, hole, reverse));
     }
     ring.bridge_holes(start, &holes)?;
-    ring.clip_ears(points, |[a, b, c]| {
+    ring.clip_ears(points, flat, |[a, b, c]| {
         triangles.extend(if flip { [a, c, b] } else { [a, b, c] })
     })
 }
@@ -235,24 +235,34 @@ impl Ring {
 
     /// The sine of the smallest angle of the ear at node `v`, or `None` when `v` is not an
     /// ear among the `alive` nodes.
-    fn ear(&self, v: usize, alive: &[bool], points: &[Point]) -> Option<f64> {
+    fn ear(
+        &self,
+        v: usize,
+        alive: &[bool],
+        points: &[Point],
+        flat: &dyn Fn([u32; 3]) -> bool,
+    ) -> Option<f64> {
         let (p, n) = (self.prev[v], self.next[v]);
         let (a, b, c) = (&self.xy[p], &self.xy[v], &self.xy[n]);
-        if orient2d(a, b, c) != Sign::Positive {
+        if orient2d(a, b, c) != Sign::Positive || flat([p, v, n].map(|k| self.vertex[k])) {
             return None;
         }
         let low = [a[0].min(b[0]).min(c[0]), a[1].min(b[1]).min(c[1])];
         let high = [a[0].max(b[0]).max(c[0]), a[1].max(b[1]).max(c[1])];
+        let corners = [p, v, n].map(|k| self.vertex[k]);
+        // A corner on the line of the new side, as the caller sees it.
+        let on_side = |w: u32| !corners.contains(&w) && flat([corners[0], w, corners[2]]);
         let blocked = (0..self.xy.len()).any(|r| {
             let q = &self.xy[r];
             alive[r]
-                && within_box(&low, &high, q)
-                && q != a
-                && q != b
-                && q != c
-                && orient2d(a, b, q) != Sign::Negative
-                && orient2d(b, c, q) != Sign::Negative
-                && orient2d(c, a, q) != Sign::Negative
+                && (within_box(&low, &high, q)
+                    && q != a
+                    && q != b
+                    && q != c
+                    && orient2d(a, b, q) != Sign::Negative
+                    && orient2d(b, c, q) != Sign::Negative
+                    && orient2d(c, a, q) != Sign::Negative
+                    || on_side(self.vertex[r]))
         });
         let corner = |node: usize| &points[self.vertex[node] as usize];
         (!blocked).then(|| min_angle_sine(corner(p), corner(v), corner(n)))
@@ -263,11 +273,13 @@ impl Ring {
     fn clip_ears(
         &mut self,
         points: &[Point],
+        flat: &dyn Fn([u32; 3]) -> bool,
         mut emit: impl FnMut([u32; 3]),
     ) -> Result<(), String> {
         let n = self.xy.len();
         let mut alive = vec![true; n];
-        let mut quality: Vec<Option<f64>> = (0..n).map(|v| self.ear(v, &alive, points)).collect();
+        let mut quality: Vec<Option<f64>> =
+            (0..n).map(|v| self.ear(v, &alive, points, flat)).collect();
         for _ in 3..n {
             // Clipping can make ears elsewhere than at its neighbours: look again before
             // giving up.
@@ -275,7 +287,7 @@ impl Ring {
                 Some(v) => v,
                 None => {
                     for v in (0..n).filter(|&v| alive[v]) {
-                        quality[v] = self.ear(v, &alive, points);
+                        quality[v] = self.ear(v, &alive, points, flat);
                     }
                     best_ear(&quality).ok_or(
                         "no ear to clip: the polygon crosses itself, or is not planar enough",
@@ -288,13 +300,16 @@ impl Ring {
             quality[best] = None;
             self.next[p] = q;
             self.prev[q] = p;
-            quality[p] = self.ear(p, &alive, points);
-            quality[q] = self.ear(q, &alive, points);
+            quality[p] = self.ear(p, &alive, points, flat);
+            quality[q] = self.ear(q, &alive, points, flat);
         }
         let v = (0..n).find(|&v| alive[v]).ok_or(NO_AREA)?;
         let (p, q) = (self.prev[v], self.next[v]);
         if orient2d(&self.xy[p], &self.xy[v], &self.xy[q]) != Sign::Positive {
             return Err("the polygon's last triangle has no area: it crosses itself".to_string());
+        }
+        if flat([p, v, q].map(|k| self.vertex[k])) {
+            return Err("the polygon's last triangle is flat".to_string());
         }
         emit([self.vertex[p], self.vertex[v], self.vertex[q]]);
         Ok(())

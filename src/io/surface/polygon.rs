@@ -22,8 +22,23 @@ pub(crate) fn triangulate_polygon(
     corners: &[u32],
     triangles: &mut Vec<u32>,
 ) -> Result<(), String> {
+    triangulate_polygon_avoiding(points, corners, &|_| false, triangles)
+}
+
+/// [`triangulate_polygon`] with no triangle whose corners `flat` accepts (corners that lie
+/// on one line although rounding put them off it); an error when every triangulation the
+/// ear clipping reaches needs one.
+pub(crate) fn triangulate_polygon_avoiding(
+    points: &[Point],
+    corners: &[u32],
+    flat: &dyn Fn([u32; 3]) -> bool,
+    triangles: &mut Vec<u32>,
+) -> Result<(), String> {
     match corners.len() {
         0..=2 => Err(too_few_corners(corners.len())),
+        3 if flat([corners[0], corners[1], corners[2]]) => {
+            Err("the polygon is a flat triangle".to_string())
+        }
         3 => {
             triangles.extend_from_slice(corners);
             Ok(())
@@ -34,7 +49,7 @@ pub(crate) fn triangulate_polygon(
                 return Err(too_few_corners(corners.len()));
             }
             let axis = projection_axis(&newell_normal(points, &corners))?;
-            ears::triangulate(points, axis, &corners, &[], triangles)
+            ears::triangulate(points, axis, (&corners, &[]), flat, triangles)
         }
     }
 }
@@ -101,7 +116,7 @@ pub(super) fn triangulate_facet(
             .filter(|&j| parents[j] == Some(k))
             .map(|j| loops[j].clone())
             .collect();
-        ears::triangulate(points, axis, outer, &inner, triangles)
+        ears::triangulate(points, axis, (outer, &inner), &|_| false, triangles)
             .map_err(|reason| format!("polygon {}: {reason}", k + 1))?;
     }
     Ok(())
@@ -253,4 +268,44 @@ fn face_of(loops: &[Vec<[f64; 2]>], depth: &[usize], q: [f64; 2]) -> Result<Opti
         }
     }
     Ok(deepest(inside.into_iter(), depth))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sorted(t: &[u32]) -> [u32; 3] {
+        let mut t = [t[0], t[1], t[2]];
+        t.sort_unstable();
+        t
+    }
+
+    /// Declaring flat the first triangle the plain triangulation of a square makes (as if
+    /// its corners lay on one line) gives the other diagonal: two positive triangles that
+    /// cover the square.
+    #[test]
+    fn declared_flat_triangles_are_avoided() {
+        let points = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let corners = [0, 1, 2, 3];
+        let mut plain = Vec::new();
+        triangulate_polygon(&points, &corners, &mut plain).unwrap();
+        let banned = sorted(&plain[..3]);
+        let flat = |t: [u32; 3]| sorted(&t) == banned;
+        let mut triangles = Vec::new();
+        triangulate_polygon_avoiding(&points, &corners, &flat, &mut triangles).unwrap();
+        assert_eq!(triangles.len(), 6, "{triangles:?}");
+        let mut area = 0.0;
+        for t in triangles.chunks(3) {
+            assert_ne!(sorted(t), banned, "{triangles:?}");
+            let [a, b, c] = [t[0], t[1], t[2]].map(|v| project(&points[v as usize], 2));
+            assert_eq!(orient2d(&a, &b, &c), Sign::Positive);
+            area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+        }
+        assert_eq!(area, 1.0);
+    }
 }
