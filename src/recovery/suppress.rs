@@ -422,10 +422,10 @@ fn left(mesh: &TetMesh, first: u32) -> Vec<u32> {
 /// Moves every point added off the surface (ids `first..`, none still on the partition: a
 /// point on the convex hull's triangles stays there) to where its star's worst
 /// radius-edge ratio is smallest (George and Borouchaki's relocation; the halving that took
-/// it off the surface leaves it needlessly close): the candidates lie on the segment from the
-/// point to the centroid of its link, and a move is kept only when every tetrahedron of the
-/// star stays positive (exact) and the worst ratio improves. The mesh's topology does not
-/// change.
+/// it off the surface leaves it needlessly close): the candidates lie on the segments from the
+/// point to the centroid of its link and to the centroid of each link triangle, and a move is
+/// kept only when every tetrahedron of the star stays positive (exact) and the worst ratio
+/// improves. The mesh's topology does not change.
 pub fn relocate_interior(mesh: &mut TetMesh, part: &Partition, first: u32) {
     for _ in 0..RELOCATION_PASSES {
         for s in first..mesh.points.len() as u32 {
@@ -462,9 +462,25 @@ fn relocate(mesh: &mut TetMesh, s: u32) {
             .fold(0.0, f64::max)
     };
     let at = *mesh.point(s);
+    // Toward the link's centroid, which a convex star holds, and toward each link triangle's,
+    // which a thin or non-convex star may need (the halving that took the point off the
+    // surface can leave it a rounding away from a surface triangle).
+    let facet_centroids = star.iter().map(|q| {
+        let others: Vec<Point> = q
+            .iter()
+            .filter(|&&v| v != s)
+            .map(|&v| *mesh.point(v))
+            .collect();
+        [0, 1, 2].map(|k| others.iter().map(|p| p[k]).sum::<f64>() / others.len() as f64)
+    });
+    let candidates: Vec<(Point, f64)> = [1.0, 0.75, 0.5, 0.25]
+        .map(|step| (centroid, step))
+        .into_iter()
+        .chain(facet_centroids.flat_map(|c| [(c, 0.5), (c, 0.25)]))
+        .collect();
     let mut best = (worst(mesh), at);
-    for step in [1.0, 0.75, 0.5, 0.25] {
-        let p = [0, 1, 2].map(|k| at[k] + step * (centroid[k] - at[k]));
+    for (target, step) in candidates {
+        let p = [0, 1, 2].map(|k| at[k] + step * (target[k] - at[k]));
         mesh.points[s as usize] = p;
         if star.iter().all(|&q| mesh.positive(q)) {
             let w = worst(mesh);
