@@ -21,11 +21,12 @@
 //! The interior points then go where they can ([`merge_interior`]): collapsed onto a
 //! neighbour (the paper's merging), or removed by filling their star, or their star and a few
 //! layers around it, again without them: the recovery of the region's boundary, with no point
-//! allowed, does that when it can.
+//! allowed, does that when it can. Last, a point left is dissolved by flips where they can
+//! take its edges away one by one ([`dissolve`]).
 
 use rustc_hash::FxHashMap as HashMap;
 
-use super::flips::Protected;
+use super::flips::{remove_edge_deep, Protected};
 use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
@@ -377,7 +378,7 @@ fn bounding_sides(
 /// with `s` replaced by `q`; points `first..` are tried in order until none collapses. Then
 /// each point left is removed when its star, or its star and a few layers around it, can be
 /// filled again without it ([`refill`]), and collapses are tried again, a bounded number of
-/// times.
+/// times. The points still left are then dissolved by flips where possible ([`dissolve`]).
 pub fn merge_interior(mesh: &mut TetMesh, protected: &Protected, first: u32) -> Result<()> {
     for _ in 0..REFILL_PASSES {
         loop {
@@ -402,7 +403,82 @@ pub fn merge_interior(mesh: &mut TetMesh, protected: &Protected, first: u32) -> 
             break;
         }
     }
+    for s in left(mesh, first) {
+        dissolve(mesh, protected, s)?;
+    }
     Ok(())
+}
+
+/// Removes interior point `s` by flips, as TetGen removes a Steiner point it cannot
+/// collapse: the edges at `s` are removed one at a time ([`remove_edge_deep`]) until its star
+/// is four tetrahedra, which the tetrahedron of their other four vertices replaces (a 4-1
+/// flip). On failure the mesh is restored from a copy, so that a point that stays leaves no
+/// trace (the copy costs a pass over the mesh per point left, few after [`refill`]).
+fn dissolve(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
+    let ball = mesh.ball(s);
+    if on_surface(mesh, protected, &ball, s) {
+        return Ok(false);
+    }
+    let before = mesh.clone();
+    for _ in 0..DISSOLVE_ROUNDS {
+        let ball = mesh.ball(s);
+        let link = link(mesh, &ball, s);
+        if ball.len() == 4 && link.len() == 4 {
+            // The star's tetrahedron with `s` renamed the link vertex it lacks.
+            let q = mesh.tets.vertices(ball[0]);
+            let lacking = link.iter().copied().find(|w| !q.contains(w));
+            let one = lacking.map(|w| renamed(q, s, w));
+            if let Some(one) = one.filter(|&one| mesh.positive(one)) {
+                if mesh.try_replace(&ball, &[one])?.is_some() {
+                    mesh.forget(s);
+                    return Ok(true);
+                }
+            }
+            break;
+        }
+        let mut removed = false;
+        for w in link {
+            let mut budget = DISSOLVE_BUDGET;
+            let any = |_: &TetMesh, _: u32, _: u32| true;
+            if remove_edge_deep(mesh, protected, [s, w], &any, DISSOLVE_DEPTH, &mut budget)? {
+                removed = true;
+                break;
+            }
+        }
+        if !removed {
+            break;
+        }
+    }
+    *mesh = before;
+    Ok(false)
+}
+
+/// Edge removals [`dissolve`] makes at most (each takes one edge from the point).
+const DISSOLVE_ROUNDS: usize = 64;
+
+/// Depth and budget of each of [`dissolve`]'s edge removals.
+const DISSOLVE_DEPTH: u32 = 2;
+const DISSOLVE_BUDGET: usize = 64;
+
+/// Whether `s`, whose star is `ball`, is a vertex of a protected facet (a point left on the
+/// convex hull's triangles).
+fn on_surface(mesh: &TetMesh, protected: &Protected, ball: &[u32], s: u32) -> bool {
+    ball.iter().any(|&t| {
+        let v = mesh.tets.vertices(t);
+        (0..4).any(|i| v[i] != s && protected.facet(mesh.facet(t, i)))
+    })
+}
+
+/// The vertices of the tetrahedra `ball` other than `s` and the infinite vertex, sorted.
+fn link(mesh: &TetMesh, ball: &[u32], s: u32) -> Vec<u32> {
+    let mut link: Vec<u32> = ball
+        .iter()
+        .flat_map(|&t| mesh.tets.vertices(t))
+        .filter(|&v| v != s && v != crate::triangulation::tets::INFINITE)
+        .collect();
+    link.sort_unstable();
+    link.dedup();
+    link
 }
 
 /// Layers of tetrahedra around a point's star that [`refill`] adds at most, one at a time.
@@ -563,20 +639,10 @@ fn refill(mesh: &mut TetMesh, protected: &Protected, s: u32, layers: usize) -> R
 /// `s` is a vertex of an input triangle.
 fn collapse(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
     let ball = mesh.ball(s);
-    let on_surface = ball.iter().any(|&t| {
-        let v = mesh.tets.vertices(t);
-        (0..4).any(|i| v[i] != s && protected.facet(mesh.facet(t, i)))
-    });
-    if on_surface {
+    if on_surface(mesh, protected, &ball, s) {
         return Ok(false);
     }
-    let mut link: Vec<u32> = ball
-        .iter()
-        .flat_map(|&t| mesh.tets.vertices(t))
-        .filter(|&v| v != s && v != crate::triangulation::tets::INFINITE)
-        .collect();
-    link.sort_unstable();
-    link.dedup();
+    let mut link = link(mesh, &ball, s);
     let at = *mesh.point(s);
     link.sort_by(|&a, &b| {
         dist(&at, mesh.point(a))

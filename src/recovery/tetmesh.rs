@@ -46,6 +46,7 @@ pub fn key([a, b, c]: [u32; 3]) -> Key {
     [a, b, c]
 }
 
+#[derive(Clone)]
 pub struct TetMesh {
     pub points: Vec<Point>,
     pub tets: Tets,

@@ -6,7 +6,7 @@
 /// Open-addressing table from cavity-boundary edges to the facet waiting for its twin,
 /// invalidated by a generation stamp. An edge is keyed without direction: the two facets
 /// that share it meet in one probe sequence, the first stores, the second takes.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct EdgeTable {
     slots: Vec<EdgeSlot>,
     stamp: u32,

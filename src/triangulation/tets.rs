@@ -27,7 +27,7 @@ pub const FACE: [[usize; 3]; 4] = [[1, 3, 2], [0, 2, 3], [0, 3, 1], [0, 1, 2]];
 
 /// Tetrahedra in one flat array of 8 words each: 4 vertices then 4 glued facets, so that a
 /// visit to a tetrahedron touches one cache line.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Tets {
     data: Vec<u32>,
     /// Per-tetrahedron conflict mark of the insertion under way (see `insert`).
