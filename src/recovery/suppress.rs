@@ -48,7 +48,7 @@ struct Patch {
 /// Moves every point of the partition off the surface: points inside triangles first, then
 /// points on edges. `normals[f]` is the unit normal of partition triangle `f`. The triangles
 /// from `first_hull` on are the convex hull's (`keep_convex_hull`): a point on those alone
-/// stays, a vertex of the mesh's boundary.
+/// merges into a neighbour there where it can, else stays, a vertex of the mesh's boundary.
 pub fn suppress_all(
     mesh: &mut TetMesh,
     part: &mut Partition,
@@ -57,8 +57,10 @@ pub fn suppress_all(
 ) -> Result<()> {
     let mut inside: Vec<u32> = Vec::new();
     let mut on_edges: Vec<u32> = Vec::new();
+    let mut on_hull: Vec<u32> = Vec::new();
     for (&v, host) in &part.host {
         if part.faces_of(v).iter().all(|&f| f >= first_hull) {
+            on_hull.push(v);
             continue;
         }
         match host {
@@ -83,9 +85,25 @@ pub fn suppress_all(
             }
         }
         match first_error {
-            None => return Ok(()),
+            None => break,
             Some(e) if failed.len() == pending.len() => return Err(e),
             Some(_) => pending = failed,
+        }
+    }
+    // Points on the hull's triangles alone cannot leave (nothing is beyond the hull to take
+    // them) but may merge into a neighbour there.
+    on_hull.sort_unstable();
+    loop {
+        let before = on_hull.len();
+        let mut stay = Vec::new();
+        for v in on_hull {
+            if !collapse_on_surface(mesh, part, v)? {
+                stay.push(v);
+            }
+        }
+        on_hull = stay;
+        if on_hull.len() == before {
+            return Ok(());
         }
     }
 }
