@@ -194,7 +194,8 @@ pub fn split_subedge(
     };
     let added = match cone(mesh, part, &set, point)? {
         Some(s) => Some(s),
-        // The crossing rounded onto an end of the sub-edge.
+        // No point near the crossing went in (it can round onto an end of the sub-edge):
+        // the sub-edge's midpoint, wherever the tetrahedra hold it.
         None => {
             let m = midpoint(&pp, &pq);
             match holding(mesh, part, set[0], &m) {
