@@ -128,8 +128,6 @@ impl Partition {
 
     /// Where a point added on sub-edge `(p, q)` lies.
     pub fn host_of_subedge(&self, p: u32, q: u32) -> Host {
-        let on_edge =
-            |v: u32, e: [u32; 2]| e.contains(&v) || self.host.get(&v) == Some(&Host::Edge(e));
         let common: Vec<usize> = {
             let fq = self.faces_of(q);
             self.faces_of(p)
@@ -140,7 +138,7 @@ impl Partition {
         for &f in &common {
             let tri = self.input[f];
             for e in sides(tri) {
-                if on_edge(p, e) && on_edge(q, e) {
+                if self.on_edge(p, e) && self.on_edge(q, e) {
                     return Host::Edge(e);
                 }
             }
@@ -148,11 +146,15 @@ impl Partition {
         Host::Face(common.first().copied().unwrap_or(0))
     }
 
+    /// Whether vertex `v` lies on input edge `e`: an end of it, or a point added on it.
+    pub fn on_edge(&self, v: u32, e: [u32; 2]) -> bool {
+        e.contains(&v) || self.host.get(&v) == Some(&Host::Edge(e))
+    }
+
     /// Whether the three vertices of `t` lie on one input edge: a flat subface.
     pub fn on_one_edge(&self, t: [u32; 3]) -> bool {
-        let on = |w: u32, e: [u32; 2]| e.contains(&w) || self.host.get(&w) == Some(&Host::Edge(e));
         t.iter().any(|v| match self.host.get(v) {
-            Some(&Host::Edge(e)) => t.iter().all(|&w| on(w, e)),
+            Some(&Host::Edge(e)) => t.iter().all(|&w| self.on_edge(w, e)),
             _ => false,
         })
     }

@@ -14,7 +14,7 @@ use super::edges::Crossing;
 use super::partition::Partition;
 use super::tetmesh::TetMesh;
 use crate::error::{Error, ErrorKind, Result};
-use crate::geometry::{add, cross, dot, sub};
+use crate::geometry::{add, cross, dot, midpoint, sub};
 use crate::predicates::{orient3d, Point, Sign};
 use crate::triangulation::tets::INFINITE;
 
@@ -36,10 +36,6 @@ fn line_line(p: &Point, q: &Point, x: &Point, y: &Point) -> Point {
     let n = cross(&d1, &d2);
     let s = dot(&cross(&sub(x, p), &d2), &n) / dot(&n, &n);
     add(p, &scale(&d1, s))
-}
-
-fn midpoint(u: &Point, v: &Point) -> Point {
-    [0, 1, 2].map(|k| 0.5 * (u[k] + v[k]))
 }
 
 fn failure(what: String) -> Error {

@@ -29,6 +29,7 @@ use rustc_hash::FxHashMap as HashMap;
 use super::flips::{remove_edge_deep, Protected};
 use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
+use super::until_stable;
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{add, dist, norm, sub};
 use crate::io::surface::triangulate_polygon_avoiding;
@@ -71,41 +72,23 @@ pub fn suppress_all(
     inside.sort_unstable();
     on_edges.sort_unstable();
     // A point that cannot leave may after its neighbours have: passes while some leave.
-    let mut pending: Vec<u32> = inside.into_iter().chain(on_edges).collect();
-    loop {
-        let mut failed = Vec::new();
-        let mut first_error = None;
-        for &v in &pending {
-            match suppress(mesh, part, normals, v) {
-                Err(e) if e.kind == ErrorKind::Limit => {
-                    failed.push(v);
-                    first_error.get_or_insert(e);
-                }
-                result => result?,
-            }
+    let pending: Vec<u32> = inside.into_iter().chain(on_edges).collect();
+    let mut errors: HashMap<u32, Error> = HashMap::default();
+    let stuck = until_stable(pending, |&v| match suppress(mesh, part, normals, v) {
+        Err(e) if e.kind == ErrorKind::Limit => {
+            errors.insert(v, e);
+            Ok(false)
         }
-        match first_error {
-            None => break,
-            Some(e) if failed.len() == pending.len() => return Err(e),
-            Some(_) => pending = failed,
-        }
+        result => result.map(|()| true),
+    })?;
+    if let Some(e) = stuck.first().and_then(|v| errors.remove(v)) {
+        return Err(e);
     }
     // Points on the hull's triangles alone cannot leave (nothing is beyond the hull to take
     // them) but may merge into a neighbour there.
     on_hull.sort_unstable();
-    loop {
-        let before = on_hull.len();
-        let mut stay = Vec::new();
-        for v in on_hull {
-            if !collapse_on_surface(mesh, part, v)? {
-                stay.push(v);
-            }
-        }
-        on_hull = stay;
-        if on_hull.len() == before {
-            return Ok(());
-        }
-    }
+    until_stable(on_hull, |&v| collapse_on_surface(mesh, part, v))?;
+    Ok(())
 }
 
 fn failure(message: String) -> Error {
@@ -189,7 +172,7 @@ fn collapse_on_surface(mesh: &mut TetMesh, part: &mut Partition, p: u32) -> Resu
     candidates.dedup();
     let host = part.host.get(&p).copied();
     candidates.retain(|&o| match host {
-        Some(Host::Edge(e)) => o != p && (e.contains(&o) || part.host.get(&o) == host.as_ref()),
+        Some(Host::Edge(e)) => o != p && part.on_edge(o, e),
         _ => o != p,
     });
     let at = *mesh.point(p);
@@ -433,13 +416,12 @@ pub fn merge_interior(mesh: &mut TetMesh, protected: &Protected, first: u32) -> 
 /// flip). On failure the mesh is restored from a copy, so that a point that stays leaves no
 /// trace (the copy costs a pass over the mesh per point left, few after [`refill`]).
 fn dissolve(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
-    let ball = mesh.ball(s);
+    let mut ball = mesh.ball(s);
     if on_surface(mesh, protected, &ball, s) {
         return Ok(false);
     }
     let before = mesh.clone();
     for _ in 0..DISSOLVE_ROUNDS {
-        let ball = mesh.ball(s);
         let link = link(mesh, &ball, s);
         if ball.len() == 4 && link.len() == 4 {
             // The star's tetrahedron with `s` renamed the link vertex it lacks.
@@ -466,6 +448,7 @@ fn dissolve(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
         if !removed {
             break;
         }
+        ball = mesh.ball(s);
     }
     *mesh = before;
     Ok(false)
@@ -534,21 +517,16 @@ pub fn relocate_interior(mesh: &mut TetMesh, part: &Partition, first: u32) {
 const RELOCATION_PASSES: usize = 3;
 
 fn relocate(mesh: &mut TetMesh, s: u32) {
-    let star: Vec<[u32; 4]> = mesh
-        .ball(s)
-        .into_iter()
-        .map(|t| mesh.tets.vertices(t))
-        .collect();
+    let ball = mesh.ball(s);
+    let star: Vec<[u32; 4]> = ball.iter().map(|&t| mesh.tets.vertices(t)).collect();
     if star
         .iter()
         .any(|q| q.contains(&crate::triangulation::tets::INFINITE))
     {
         return;
     }
-    let mut link: Vec<u32> = star.iter().flatten().copied().filter(|&v| v != s).collect();
-    link.sort_unstable();
-    link.dedup();
-    let centroid =
+    let link = link(mesh, &ball, s);
+    let middle =
         [0, 1, 2].map(|k| link.iter().map(|&v| mesh.point(v)[k]).sum::<f64>() / link.len() as f64);
     let worst = |mesh: &TetMesh| {
         star.iter()
@@ -559,16 +537,9 @@ fn relocate(mesh: &mut TetMesh, s: u32) {
     // Toward the link's centroid, which a convex star holds, and toward each link triangle's,
     // which a thin or non-convex star may need (the halving that took the point off the
     // surface can leave it a rounding away from a surface triangle).
-    let facet_centroids = star.iter().map(|q| {
-        let others: Vec<Point> = q
-            .iter()
-            .filter(|&&v| v != s)
-            .map(|&v| *mesh.point(v))
-            .collect();
-        [0, 1, 2].map(|k| others.iter().map(|p| p[k]).sum::<f64>() / others.len() as f64)
-    });
+    let facet_centroids = ball.iter().map(|&t| centroid(mesh, &[t], s));
     let candidates: Vec<(Point, f64)> = [1.0, 0.75, 0.5, 0.25]
-        .map(|step| (centroid, step))
+        .map(|step| (middle, step))
         .into_iter()
         .chain(facet_centroids.flat_map(|c| [(c, 0.5), (c, 0.25)]))
         .collect();

@@ -244,12 +244,12 @@ impl Ring {
     ) -> Option<f64> {
         let (p, n) = (self.prev[v], self.next[v]);
         let (a, b, c) = (&self.xy[p], &self.xy[v], &self.xy[n]);
-        if orient2d(a, b, c) != Sign::Positive || flat([p, v, n].map(|k| self.vertex[k])) {
+        let corners = [p, v, n].map(|k| self.vertex[k]);
+        if orient2d(a, b, c) != Sign::Positive || flat(corners) {
             return None;
         }
         let low = [a[0].min(b[0]).min(c[0]), a[1].min(b[1]).min(c[1])];
         let high = [a[0].max(b[0]).max(c[0]), a[1].max(b[1]).max(c[1])];
-        let corners = [p, v, n].map(|k| self.vertex[k]);
         // A corner on the line of the new side, as the caller sees it.
         let on_side = |w: u32| !corners.contains(&w) && flat([corners[0], w, corners[2]]);
         let blocked = (0..self.xy.len()).any(|r| {
