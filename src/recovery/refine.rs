@@ -633,9 +633,10 @@ impl Refiner<'_> {
                         size = size.min(segment_distance(p, point(x), point(y)));
                     }
                 }
-                let f = FACE[i].map(|k| q[k]);
-                let [a, b, c] = key(f);
-                if facets.position(a, &[b, c]).is_some() {
+                // A protected facet has protected sides: most facets need no lookup.
+                let sides = (0..3).all(|k| protected[edge_index(FACE[i][k], FACE[i][(k + 1) % 3])]);
+                let [a, b, c] = key(FACE[i].map(|k| q[k]));
+                if sides && facets.position(a, &[b, c]).is_some() {
                     size = size.min(triangle_distance(p, FACE[i].map(point)));
                 }
                 lfs[v as usize] = size;
