@@ -175,24 +175,14 @@ fn collapse_on_surface(mesh: &mut TetMesh, part: &mut Partition, p: u32) -> Resu
         Some(Host::Edge(e)) => o != p && part.on_edge(o, e),
         _ => o != p,
     });
-    let at = *mesh.point(p);
-    candidates.sort_by(|&a, &b| dist(&at, mesh.point(a)).total_cmp(&dist(&at, mesh.point(b))));
+    nearest_first(mesh, p, &mut candidates);
     let ball = mesh.ball(p);
     for o in candidates {
         let flat = fans
             .iter()
             .flatten()
             .any(|&s| !s.contains(&o) && part.on_one_edge(renamed(s, p, o)));
-        if flat {
-            continue;
-        }
-        let new: Vec<[u32; 4]> = ball
-            .iter()
-            .map(|&t| mesh.tets.vertices(t))
-            .filter(|q| !q.contains(&o))
-            .map(|q| renamed(q, p, o))
-            .collect();
-        if !new.iter().all(|&q| mesh.positive(q)) || mesh.try_replace(&ball, &new)?.is_none() {
+        if flat || !merge_into(mesh, &ball, p, o)? {
             continue;
         }
         for (&f, old) in faces.iter().zip(&fans) {
@@ -204,7 +194,6 @@ fn collapse_on_surface(mesh: &mut TetMesh, part: &mut Partition, p: u32) -> Resu
             part.retriangulate(f, old, &kept);
         }
         part.host.remove(&p);
-        mesh.forget(p);
         return Ok(true);
     }
     Ok(false)
@@ -213,6 +202,30 @@ fn collapse_on_surface(mesh: &mut TetMesh, part: &mut Partition, p: u32) -> Resu
 /// `q` with vertex `p` renamed `o`.
 fn renamed<const N: usize>(q: [u32; N], p: u32, o: u32) -> [u32; N] {
     q.map(|v| if v == p { o } else { v })
+}
+
+/// Sorts `vertices` (sorted by number) by their distance to `p`, nearest first; ties keep
+/// their order.
+fn nearest_first(mesh: &TetMesh, p: u32, vertices: &mut [u32]) {
+    let at = *mesh.point(p);
+    vertices.sort_by(|&a, &b| dist(&at, mesh.point(a)).total_cmp(&dist(&at, mesh.point(b))));
+}
+
+/// Merges `p` into its neighbour `o`: every tetrahedron of `ball`, the star of `p`, takes
+/// `o` in place of `p`, and those through both vanish. `false`, changing nothing, when a new
+/// tetrahedron would not be positive.
+fn merge_into(mesh: &mut TetMesh, ball: &[u32], p: u32, o: u32) -> Result<bool> {
+    let new: Vec<[u32; 4]> = ball
+        .iter()
+        .map(|&t| mesh.tets.vertices(t))
+        .filter(|q| !q.contains(&o))
+        .map(|q| renamed(q, p, o))
+        .collect();
+    if !new.iter().all(|&q| mesh.positive(q)) || mesh.try_replace(ball, &new)?.is_none() {
+        return Ok(false);
+    }
+    mesh.forget(p);
+    Ok(true)
 }
 
 /// Moves point `p` off the surface: one copy into each piece of its star.
@@ -415,10 +428,10 @@ pub fn merge_interior(mesh: &mut TetMesh, protected: &Protected, first: u32) -> 
 /// is four tetrahedra, which the tetrahedron of their other four vertices replaces (a 4-1
 /// flip). On failure the mesh is restored from a copy, so that a point that stays leaves no
 /// trace (the copy costs a pass over the mesh per point left, few after [`refill`]).
-fn dissolve(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
+fn dissolve(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<()> {
     let mut ball = mesh.ball(s);
     if on_surface(mesh, protected, &ball, s) {
-        return Ok(false);
+        return Ok(());
     }
     let before = mesh.clone();
     for _ in 0..DISSOLVE_ROUNDS {
@@ -431,7 +444,7 @@ fn dissolve(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
             if let Some(one) = one.filter(|&one| mesh.positive(one)) {
                 if mesh.try_replace(&ball, &[one])?.is_some() {
                     mesh.forget(s);
-                    return Ok(true);
+                    return Ok(());
                 }
             }
             break;
@@ -451,7 +464,7 @@ fn dissolve(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
         ball = mesh.ball(s);
     }
     *mesh = before;
-    Ok(false)
+    Ok(())
 }
 
 /// Edge removals [`dissolve`] makes at most (each takes one edge from the point).
@@ -632,22 +645,9 @@ fn collapse(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<bool> {
         return Ok(false);
     }
     let mut link = link(mesh, &ball, s);
-    let at = *mesh.point(s);
-    link.sort_by(|&a, &b| {
-        dist(&at, mesh.point(a))
-            .partial_cmp(&dist(&at, mesh.point(b)))
-            .unwrap_or(std::cmp::Ordering::Equal)
-            .then(a.cmp(&b))
-    });
+    nearest_first(mesh, s, &mut link);
     for q in link {
-        let new: Vec<[u32; 4]> = ball
-            .iter()
-            .map(|&t| mesh.tets.vertices(t))
-            .filter(|v| !v.contains(&q))
-            .map(|v| v.map(|x| if x == s { q } else { x }))
-            .collect();
-        if new.iter().all(|&t| mesh.positive(t)) && mesh.try_replace(&ball, &new)?.is_some() {
-            mesh.forget(s);
+        if merge_into(mesh, &ball, s, q)? {
             return Ok(true);
         }
     }
