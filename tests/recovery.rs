@@ -285,6 +285,49 @@ fn invalid_surfaces_name_the_culprit() {
     assert!(e.message.contains("intersect"), "{}", e.message);
 }
 
+/// The intersection check runs only when recovery needs a point on the surface or meshing
+/// fails (a surface recovered without points cannot intersect itself): intersecting inputs
+/// of both kinds still get the message of the whole check, and valid ones mesh.
+#[test]
+fn self_intersections_are_named_whatever_the_recovery_needs() {
+    let mut cases = vec![
+        joined(cube_at([0.0; 3], 1.0, 0), cube_at([0.5; 3], 1.0, 8)),
+        joined(
+            cube_at([0.0; 3], 1.0, 0),
+            cube_at([0.25, 0.25, 0.5], 0.5, 8),
+        ),
+        joined(cube_at([0.0; 3], 1.0, 0), cube_at([0.5, 0.0, 0.0], 1.0, 8)),
+    ];
+    // A twisted prism whose top vertex is pulled down through the bottom face, and one whose
+    // top is pushed through a side.
+    for (vertex, to) in [(3usize, [0.2, 0.1, -0.5]), (4, [-3.0, -3.0, 0.5])] {
+        let (mut xyz, tris) = twisted_prism(30.0);
+        xyz[3 * vertex..3 * vertex + 3].copy_from_slice(&to);
+        cases.push((xyz, tris));
+    }
+    for (k, (xyz, tris)) in cases.iter().enumerate() {
+        let points: Vec<[f64; 3]> = xyz.chunks(3).map(|p| [p[0], p[1], p[2]]).collect();
+        let triangles: Vec<[u32; 3]> = tris.chunks(3).map(|t| [t[0], t[1], t[2]]).collect();
+        let whole = delmesh::recovery::validate::check_surface(&points, &triangles).unwrap_err();
+        assert!(
+            whole.message.ends_with("intersect"),
+            "case {k}: {}",
+            whole.message
+        );
+        for options in [
+            SurfaceOptions::default(),
+            SurfaceOptions {
+                keep_convex_hull: true,
+                ..Default::default()
+            },
+        ] {
+            let e = tetrahedralize_surface(xyz, tris, &options).unwrap_err();
+            assert_eq!(e.kind, ErrorKind::InvalidInput, "case {k}: {}", e.message);
+            assert_eq!(e.message, whole.message, "case {k}");
+        }
+    }
+}
+
 /// Corpus files on which the floating-point points added on coplanar regions still defeat
 /// recovery or cannot be moved off the surface (a clean `Limit` error); any other failure
 /// fails the test.

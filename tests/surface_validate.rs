@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use delmesh::error::ErrorKind;
-use delmesh::recovery::validate::check_surface;
+use delmesh::recovery::validate::{check_intersections, check_intersections_of, check_surface};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -561,6 +561,35 @@ fn fine_sphere_and_a_poke() {
         sphere.triangles[i].contains(&0) || sphere.triangles[j].contains(&0),
         "{i} {j}"
     );
+}
+
+#[test]
+fn suspects_cover_every_intersection() {
+    // Only vertex 0 moves: every intersecting pair has a triangle of its fan, and the check
+    // restricted to the pairs with a suspect names the pair the whole check names.
+    let mut sphere = icosphere(3);
+    let fan: Vec<usize> = (0..sphere.triangles.len())
+        .filter(|&k| sphere.triangles[k].contains(&0))
+        .collect();
+    let all: Vec<usize> = (0..sphere.triangles.len()).collect();
+    check_intersections_of(&sphere.points, &sphere.triangles, &fan).unwrap();
+    let original = sphere.points[0];
+    let neighbour = sphere.points[sphere.triangles[fan[0]][1] as usize];
+    let moves = [
+        original.map(|x| -1.5 * x),
+        original.map(|x| -1.1 * x),
+        [0, 1, 2].map(|k| original[k] + 1.5 * (neighbour[k] - original[k])),
+    ];
+    for moved in moves {
+        sphere.points[0] = moved;
+        let whole = check_intersections(&sphere.points, &sphere.triangles).unwrap_err();
+        assert_eq!(whole.kind, ErrorKind::InvalidInput);
+        intersecting_pair(&whole.message);
+        for suspects in [&fan, &all] {
+            let part = check_intersections_of(&sphere.points, &sphere.triangles, suspects);
+            assert_eq!(part.unwrap_err().message, whole.message);
+        }
+    }
 }
 
 // An independent oracle on small integer coordinates: separating axes with exact integer

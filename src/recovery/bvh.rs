@@ -176,22 +176,33 @@ impl Bvh {
     }
 
     /// Calls `visit(i)` for every item whose box holds the point `p`, in no set order.
-    pub fn for_each_containing(&self, p: &[f64; 3], mut visit: impl FnMut(usize)) {
-        let point = Aabb { lo: *p, hi: *p };
-        let mut pending = if self.nodes.is_empty() {
-            vec![]
-        } else {
-            vec![0]
-        };
-        while let Some(a) = pending.pop() {
-            let node = &self.nodes[a];
-            if !node.bounds.overlaps(&point) {
+    pub fn for_each_containing(&self, p: &[f64; 3], visit: impl FnMut(usize)) {
+        self.for_each_overlapping(&Aabb { lo: *p, hi: *p }, visit);
+    }
+
+    /// Calls `visit(i)` for every item whose box overlaps `query`, in no set order.
+    pub fn for_each_overlapping(&self, query: &Aabb, mut visit: impl FnMut(usize)) {
+        if self.nodes.is_empty() {
+            return;
+        }
+        // Depth first: the stack holds at most one node per level below the root, and the
+        // tree halves its nodes down to leaves (fewer than 64 levels for any item count).
+        let mut pending = [0usize; 64];
+        let mut len = 1;
+        while len > 0 {
+            len -= 1;
+            let node = &self.nodes[pending[len]];
+            if !node.bounds.overlaps(query) {
                 continue;
             }
             match node.children {
-                Some([l, r]) => pending.extend([l, r]),
+                Some([l, r]) => {
+                    pending[len] = l;
+                    pending[len + 1] = r;
+                    len += 2;
+                }
                 None => (node.start..node.end)
-                    .filter(|&k| self.boxes[k].overlaps(&point))
+                    .filter(|&k| self.boxes[k].overlaps(query))
                     .for_each(|k| visit(self.order[k])),
             }
         }

@@ -3,7 +3,10 @@
 //!
 //! Pipeline:
 //! 1. [`validate`]: the input is checked before anything else (finite coordinates, indices,
-//!    degenerate and duplicate triangles, edges with a single triangle, self-intersections).
+//!    degenerate and duplicate triangles, edges with a single triangle); self-intersections
+//!    are looked for before the first point is added on the surface, among the triangles that
+//!    are not facets yet, or when meshing fails (`IntersectionCheck`): a surface whose
+//!    triangles are all facets of a tetrahedralization does not intersect itself.
 //! 2. The Delaunay triangulation of the surface vertices, of the vertices no triangle uses
 //!    that can be meshed ([`validate::isolated_vertices`], TetGen's `.node` semantics), and
 //!    of the corners of an enlarged bounding box (§5.1), so that no input triangle lies on the
@@ -96,7 +99,65 @@ pub fn tetrahedralize_surface(
             "coordinates or triangle indices are not a multiple of 3",
         ));
     }
-    validate::check_surface(points, tris)?;
+    validate::check_surface_but_intersections(points, tris)?;
+    let mut intersections = IntersectionCheck {
+        points,
+        triangles: tris,
+        done: false,
+    };
+    match mesh_surface(points, tris, options, &mut intersections) {
+        Ok(mesh) => Ok(mesh),
+        // A self-intersection is the first cause to report.
+        Err(e) => intersections.run().and(Err(e)),
+    }
+}
+
+/// The self-intersection check of the input, run at most once: when recovery is about to add
+/// its first point on the surface, or when meshing fails. Until then the mesh is a
+/// tetrahedralization of the input vertices, and two of its facets meet only along their
+/// shared vertices and edge: the input triangles that are facets cannot intersect one
+/// another, and only the pairs with a triangle that is not are tested
+/// ([`validate::check_intersections_of`]). An input recovered with no point is thus never
+/// searched for intersections: most inputs are such, and the search took a quarter of
+/// their time.
+struct IntersectionCheck<'a> {
+    points: &'a [Point],
+    triangles: &'a [[u32; 3]],
+    done: bool,
+}
+
+impl IntersectionCheck<'_> {
+    /// Checks every pair of input triangles.
+    fn run(&mut self) -> Result<()> {
+        self.run_on(None)
+    }
+
+    /// Checks the pairs with a triangle among `suspects` (triangle numbers of the recovery,
+    /// those of the convex hull's triangles included: ignored), or every pair for `None`.
+    fn run_on(&mut self, suspects: Option<&[usize]>) -> Result<()> {
+        if std::mem::replace(&mut self.done, true) {
+            return Ok(());
+        }
+        let Some(suspects) = suspects else {
+            return validate::check_intersections(self.points, self.triangles);
+        };
+        let input: Vec<usize> = suspects
+            .iter()
+            .copied()
+            .filter(|&f| f < self.triangles.len())
+            .collect();
+        validate::check_intersections_of(self.points, self.triangles, &input)
+    }
+}
+
+/// [`tetrahedralize_surface`] of a surface whose checks passed, self-intersections aside:
+/// `intersections` runs before the first point is added on it.
+fn mesh_surface(
+    points: &[Point],
+    tris: &[[u32; 3]],
+    options: &SurfaceOptions,
+    intersections: &mut IntersectionCheck,
+) -> Result<Mesh> {
     check_options(options)?;
     let isolated = validate::isolated_vertices(points, tris);
     // With the convex hull kept, its triangles are recovered and bound regions as the input's.
@@ -109,11 +170,13 @@ pub fn tetrahedralize_surface(
     }
     let mut mesh = enclosed_delaunay(points, &bounding, &isolated)?;
     let mut part = Partition::new(&bounding);
+    let budget = 16 * bounding.len() + 1024;
     recover(
         &mut mesh,
         &mut part,
-        16 * bounding.len() + 1024,
+        budget,
         edges::DEEPEST,
+        &mut |absent| intersections.run_on(Some(absent)),
     )?;
     let normals: Vec<Point> = bounding.iter().map(|f| unit_normal(points, *f)).collect();
     suppress::suppress_all(&mut mesh, &mut part, &normals, tris.len())?;
@@ -150,13 +213,17 @@ pub fn tetrahedralize_surface(
 /// fail, a point is added on the surface at the first crossing and the loop starts again
 /// with the new, smaller pieces. At most `budget` points are added. Sub-edges the flips
 /// leave missing are tried again with edge removals one level deeper each time, down to
-/// `deepest` ([`edges::DEPTH`] for none), before points are added for them.
+/// `deepest` ([`edges::DEPTH`] for none), before points are added for them. Before the
+/// first point, `before_points` is told the triangles (numbers in `part`) that may not be
+/// facets of the mesh, and may stop the recovery.
 fn recover(
     mesh: &mut TetMesh,
     part: &mut Partition,
     mut budget: usize,
     deepest: u32,
+    before_points: &mut dyn FnMut(&[usize]) -> Result<()>,
 ) -> Result<()> {
+    let mut first_point = true;
     // What is recovered stays: flips never destroy a protected edge or facet.
     let (mut edges_done, present) = mesh.present(&part.protected);
     let mut faces_done: HashSet<[u32; 3]> =
@@ -187,6 +254,9 @@ fn recover(
         }
         if !stuck.is_empty() {
             for [a, b] in stuck {
+                if std::mem::take(&mut first_point) {
+                    before_points(&absent(mesh, part, &faces_done))?;
+                }
                 spend(&mut budget, || format!("sub-edge ({a}, {b})"))?;
                 if let Some(c) = edges::first_crossing(mesh, a, b)? {
                     steiner::split_subedge(mesh, part, a, b, c)?;
@@ -210,6 +280,9 @@ fn recover(
             return Ok(());
         }
         for (f, t) in stuck {
+            if std::mem::take(&mut first_point) {
+                before_points(&absent(mesh, part, &faces_done))?;
+            }
             spend(&mut budget, || format!("triangle {f}"))?;
             if let Some(&(e, _)) = faces::crossing_edges(mesh, t).first() {
                 steiner::split_subface(mesh, part, f, t, e)?;
@@ -224,7 +297,7 @@ fn recover(
 fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
     let mut mesh = enclosed_delaunay(points, triangles, &[]).ok()?;
     let mut part = Partition::new(triangles);
-    recover(&mut mesh, &mut part, 0, edges::DEPTH).ok()?;
+    recover(&mut mesh, &mut part, 0, edges::DEPTH, &mut |_| Ok(())).ok()?;
     let n = points.len() as u32;
     let start = mesh.search_ball(n, |_, t| Some(t))?;
     let mut outside = vec![false; mesh.tets.slots()];
@@ -246,6 +319,19 @@ fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[
         .map(|t| mesh.tets.vertices(t))
         .collect();
     inside.iter().flatten().all(|&v| v < n).then_some(inside)
+}
+
+/// The triangles (numbers in `part`) with a subface that is not a facet of `mesh` (those in
+/// `present` are).
+fn absent(mesh: &mut TetMesh, part: &Partition, present: &HashSet<[u32; 3]>) -> Vec<usize> {
+    let mut absent: Vec<usize> = part
+        .all_subfaces()
+        .into_iter()
+        .filter(|(_, f)| !present.contains(f) && mesh.find_face(*f).is_none())
+        .map(|(k, _)| k)
+        .collect();
+    absent.dedup();
+    absent
 }
 
 /// Counts one added point against `budget`.

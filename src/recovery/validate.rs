@@ -4,7 +4,9 @@
 //! at distinct positions, proper triangles given once, no edge with a single triangle, and
 //! triangles that meet only at their shared vertices and edges. [`check_surface`] checks these
 //! in that order and reports the first failing check, naming the culprit with the smallest
-//! triangle (or vertex) numbers.
+//! triangle (or vertex) numbers. The recovery runs the last check, [`check_intersections`],
+//! only when it needs it, and then often on a few suspect triangles
+//! ([`check_intersections_of`]): see `IntersectionCheck` in the module above.
 //!
 //! Every geometric decision is an exact predicate on input coordinates. Self-intersections are
 //! found by testing the pairs of triangles whose bounding boxes overlap (a bounding-volume
@@ -26,6 +28,12 @@ use crate::triangulation::MAX_COORDINATE;
 /// Checks `points` and `triangles` (0-based vertex indices); the error names the offending
 /// triangles and vertices.
 pub fn check_surface(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> {
+    check_surface_but_intersections(points, triangles)?;
+    check_intersections(points, triangles)
+}
+
+/// [`check_surface`] without its last check, [`check_intersections`].
+pub fn check_surface_but_intersections(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> {
     if triangles.is_empty() {
         return Err(Error::invalid_input("the surface has no triangles"));
     }
@@ -34,8 +42,7 @@ pub fn check_surface(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> 
     check_coincident(points, triangles)?;
     check_degenerate(points, triangles)?;
     check_duplicates(triangles)?;
-    check_closed(triangles)?;
-    check_intersections(points, triangles)
+    check_closed(triangles)
 }
 
 /// "triangle k (vertices a, b, c)".
@@ -112,7 +119,8 @@ fn check_coincident(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> {
 /// The vertices no triangle uses that can be vertices of the mesh (TetGen meshes every node
 /// of a `.node` file): finite and within [`MAX_COORDINATE`], at a position no used vertex or
 /// smaller such vertex has, and off every closed input triangle (exact tests). The others
-/// are left out of the mesh, as junk vertices of a file are. Call after [`check_surface`].
+/// are left out of the mesh, as junk vertices of a file are. Call after
+/// [`check_surface_but_intersections`].
 pub fn isolated_vertices(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Vec<u32> {
     let mut used = vec![false; points.len()];
     for &v in triangles.iter().flatten() {
@@ -260,7 +268,7 @@ fn check_closed(triangles: &[[u32; 3]]) -> Result<()> {
 
 /// Fails when two triangles meet other than at their shared vertices and edge (the pair with
 /// the smallest numbers is named). Only the pairs whose bounding boxes overlap are tested.
-fn check_intersections(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> {
+pub fn check_intersections(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()> {
     let mut first: Option<(usize, usize)> = None;
     let o = bounding_filter(points);
     triangle_hierarchy(points, triangles).for_each_overlapping_pair(|i, j| {
@@ -270,6 +278,45 @@ fn check_intersections(points: &[[f64; 3]], triangles: &[[u32; 3]]) -> Result<()
             first = Some((i, j));
         }
     });
+    intersection_error(first, triangles)
+}
+
+/// [`check_intersections`] when every pair of triangles that may meet improperly has one
+/// among `suspects` (distinct triangle numbers): only those pairs are tested, and the same
+/// pair is named. The triangles that are facets of one tetrahedralization, for instance,
+/// meet properly: the others are the suspects.
+pub fn check_intersections_of(
+    points: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    suspects: &[usize],
+) -> Result<()> {
+    let mut suspect = vec![false; triangles.len()];
+    for &s in suspects {
+        suspect[s] = true;
+    }
+    let o = bounding_filter(points);
+    let bounds = |t: usize| Aabb::of_points(&triangles[t].map(|v| points[v as usize]));
+    // Few suspects: their hierarchy is small, and every triangle looks them up in it.
+    let hierarchy = Bvh::new(suspects.iter().map(|&s| bounds(s)).collect());
+    let mut first: Option<(usize, usize)> = None;
+    for (t, &is_suspect) in suspect.iter().enumerate() {
+        hierarchy.for_each_overlapping(&bounds(t), |k| {
+            let s = suspects[k];
+            // Each pair once: a pair of suspects from its larger one.
+            let (i, j) = (s.min(t), s.max(t));
+            if t == s || is_suspect && t < s || first.is_some_and(|f| f < (i, j)) {
+                return;
+            }
+            if improper_contact(&o, points, &triangles[i], &triangles[j]) {
+                first = Some((i, j));
+            }
+        });
+    }
+    intersection_error(first, triangles)
+}
+
+/// The error naming the intersecting triangles `first`, if any.
+fn intersection_error(first: Option<(usize, usize)>, triangles: &[[u32; 3]]) -> Result<()> {
     match first {
         Some((i, j)) => Err(Error::invalid_input(format!(
             "triangles {} and {} intersect",
