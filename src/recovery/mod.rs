@@ -132,8 +132,9 @@ impl IntersectionCheck<'_> {
         self.run_on(None)
     }
 
-    /// Checks the pairs with a triangle among `suspects` (triangle numbers of the recovery,
-    /// those of the convex hull's triangles included: ignored), or every pair for `None`.
+    /// Checks the pairs with an input triangle among `suspects` (numbers among the recovered
+    /// triangles: those past the input's, the convex hull's, are left out), or every pair for
+    /// `None`.
     fn run_on(&mut self, suspects: Option<&[usize]>) -> Result<()> {
         if std::mem::replace(&mut self.done, true) {
             return Ok(());
