@@ -8,11 +8,15 @@
 //! ring, is the 2-2 flip in the plane that coplanar input (grids, planar CAD faces) needs.
 //! The same is tried from `b`. When neither end can advance, the edges of the first crossed
 //! facets are removed (any valid ring triangulation, shrinking rings some levels deep as
-//! TetGen's `flipnm` does), which changes the stars without advancing, until the first
-//! crossings repeat or a bounded number of times. Edges still missing are tried again one
-//! level deeper, down to [`DEEPEST`].
+//! TetGen's `flipnm` does; a facet's edges where its 2-3 flip fails first, as TetGen's
+//! `removefacebyflips` picks them), which changes the stars without advancing, until the
+//! first crossings repeat or a bounded number of times. Edges still missing are tried again
+//! one level deeper, down to [`DEEPEST`], then once more with guarded unblocking: no flip may
+//! create a facet whose interior the segment crosses ([`Clear`], TetGen's
+//! `checkflipeligibility` with a segment).
 
-use super::flips::{flip23, remove_edge, remove_edge_deep, Protected};
+use super::faces::crosses;
+use super::flips::{flip23, remove_edge, remove_edge_deep, Protected, Rule};
 use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::Sign;
@@ -80,14 +84,19 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
 /// Crossings are looked up again after every attempt that may have changed the mesh.
 /// Unblocking ([`unblock`]) removes edges `depth` levels deep, and stops when it meets the
-/// first crossings from both ends it met before (its flips went round in a circle).
+/// first crossings from both ends it met before (its flips went round in a circle). When
+/// `guarded`, no unblocking flip may create a facet whose interior the segment crosses
+/// (TetGen's `checkflipeligibility` with a segment).
 pub fn recover_edge(
     mesh: &mut TetMesh,
     protected: &Protected,
-    a: u32,
-    b: u32,
+    [a, b]: [u32; 2],
     depth: u32,
+    guarded: bool,
 ) -> Result<bool> {
+    let free = |_: &TetMesh, _: u32, _: u32| true;
+    let clear = Clear([a, b]);
+    let rule: &dyn Rule = if guarded { &clear } else { &free };
     let mut seen = rustc_hash::FxHashSet::default();
     'flips: for _ in 0..MAX_FLIPS {
         // A failed advance changes nothing: its crossings still hold after both failed.
@@ -105,14 +114,14 @@ pub fn recover_edge(
             // The unblocking flips went round in a circle.
             return Ok(false);
         }
-        if unblock(mesh, protected, crossings[0], depth)? {
+        if unblock(mesh, protected, crossings[0], depth, rule)? {
             continue;
         }
         // A failed unblocking may keep flips: the crossing from b is looked up again.
         let Some(c) = crossing_off_vertices(mesh, b, a)? else {
             return Ok(true);
         };
-        if !unblock(mesh, protected, c, depth)? {
+        if !unblock(mesh, protected, c, depth, rule)? {
             return Ok(false);
         }
     }
@@ -163,7 +172,7 @@ fn advance(
     c: Crossing,
 ) -> Result<bool> {
     match c {
-        Crossing::Facet(t, i) => flip23(mesh, protected, t, i, &|_, _, _| true),
+        Crossing::Facet(t, i) => flip23(mesh, protected, t, i, &|_: &TetMesh, _: u32, _: u32| true),
         Crossing::Edge([x, y], _) => {
             debug_assert_eq!(mesh.orient([x, y, start, end]), Sign::Zero);
             remove_edge(mesh, protected, [x, y], &not_across(x, y, start))
@@ -181,24 +190,50 @@ fn not_across(x: u32, y: u32, start: u32) -> impl Fn(&TetMesh, u32, u32) -> bool
     }
 }
 
-/// Removes one edge of the first crossed facet, or the crossed edge, whatever the ring
-/// triangulation, `depth` levels deep, to change the star that blocks [`advance`].
-fn unblock(mesh: &mut TetMesh, protected: &Protected, c: Crossing, depth: u32) -> Result<bool> {
-    let any = |_: &TetMesh, _: u32, _: u32| true;
+/// Removes one edge of the first crossed facet, or the crossed edge, `depth` levels deep, by
+/// flips that `rule` allows, to change the star that blocks [`advance`]. A facet's edges
+/// are tried first where its 2-3 flip fails (TetGen's `removefacebyflips`): the edges whose
+/// new tetrahedron would not be positive.
+fn unblock(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    c: Crossing,
+    depth: u32,
+    rule: &dyn Rule,
+) -> Result<bool> {
     let budget = BUDGET << (depth - DEPTH);
     match c {
         Crossing::Facet(t, i) => {
-            let (_, [x, y, z]) = mesh.with_apex(t, i);
-            for e in [[x, y], [y, z], [z, x]] {
-                if remove_edge_deep(mesh, protected, e, &any, depth, &mut budget.to_owned())? {
+            let (d, [x, y, z]) = mesh.with_apex(t, i);
+            let g = mesh.tets.glued(t, i);
+            let e = mesh.tets.vertices(g >> 2)[(g & 3) as usize];
+            let mut edges = [[x, y], [y, z], [z, x]];
+            if e != INFINITE {
+                edges.sort_by_key(|&[u, w]| mesh.positive([d, u, w, e]));
+            }
+            for e in edges {
+                if remove_edge_deep(mesh, protected, e, rule, depth, &mut budget.to_owned())? {
                     return Ok(true);
                 }
             }
             Ok(false)
         }
         Crossing::Edge(e, _) => {
-            remove_edge_deep(mesh, protected, e, &any, depth, &mut budget.to_owned())
+            remove_edge_deep(mesh, protected, e, rule, depth, &mut budget.to_owned())
         }
         Crossing::Vertex(_) => Ok(false),
+    }
+}
+
+/// The rule of guarded unblocking: no new facet whose interior the segment crosses.
+pub struct Clear(pub [u32; 2]);
+
+impl Rule for Clear {
+    fn edge(&self, _: &TetMesh, _: u32, _: u32) -> bool {
+        true
+    }
+
+    fn facet(&self, mesh: &TetMesh, f: [u32; 3]) -> bool {
+        !crosses(mesh, f, self.0[0], self.0[1])
     }
 }

@@ -34,6 +34,22 @@ impl Protected {
     }
 }
 
+/// What a flip may create: every new edge `(u, w)` is asked first, then every new facet
+/// through it. A closure over edges is a rule that accepts every facet.
+pub trait Rule {
+    fn edge(&self, mesh: &TetMesh, u: u32, w: u32) -> bool;
+
+    fn facet(&self, _mesh: &TetMesh, _f: [u32; 3]) -> bool {
+        true
+    }
+}
+
+impl<F: Fn(&TetMesh, u32, u32) -> bool> Rule for F {
+    fn edge(&self, mesh: &TetMesh, u: u32, w: u32) -> bool {
+        self(mesh, u, w)
+    }
+}
+
 /// Shape of a positively oriented tetrahedron, scale-free, larger is better (0 when flat).
 fn shape(mesh: &TetMesh, q: [u32; 4]) -> f64 {
     let p = q.map(|v| *mesh.point(v));
@@ -55,17 +71,20 @@ pub fn flip23(
     protected: &Protected,
     t: u32,
     i: usize,
-    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+    allowed: &dyn Rule,
 ) -> Result<bool> {
     let (d, [x, y, z]) = mesh.with_apex(t, i);
     let g = mesh.tets.glued(t, i);
     let (n, j) = (g >> 2, (g & 3) as usize);
     let e = mesh.tets.vertices(n)[j];
-    if protected.facet([x, y, z]) || d == INFINITE || e == INFINITE || !allowed(mesh, d, e) {
+    if protected.facet([x, y, z]) || d == INFINITE || e == INFINITE || !allowed.edge(mesh, d, e) {
         return Ok(false);
     }
     let new = [[d, x, y, e], [d, y, z, e], [d, z, x, e]];
-    if !new.iter().all(|&q| mesh.positive(q)) {
+    // Positive tetrahedra are finite: the rule sees finite facets only.
+    if !new.iter().all(|&q| mesh.positive(q))
+        || ![x, y, z].iter().all(|&w| allowed.facet(mesh, [d, e, w]))
+    {
         return Ok(false);
     }
     mesh.replace(&[t, n], &new)?;
@@ -81,7 +100,7 @@ pub fn remove_edge(
     mesh: &mut TetMesh,
     protected: &Protected,
     [a, b]: [u32; 2],
-    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+    allowed: &dyn Rule,
 ) -> Result<bool> {
     if protected.edge(a, b) {
         return Ok(false);
@@ -101,7 +120,7 @@ fn remove_shell(
     protected: &Protected,
     [a, b]: [u32; 2],
     (shell, ring): (&[u32], &[u32]),
-    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+    allowed: &dyn Rule,
 ) -> Result<bool> {
     if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
         return Ok(false);
@@ -128,7 +147,7 @@ pub fn remove_edge_deep(
     mesh: &mut TetMesh,
     protected: &Protected,
     [a, b]: [u32; 2],
-    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+    allowed: &dyn Rule,
     level: u32,
     budget: &mut usize,
 ) -> Result<bool> {
@@ -199,7 +218,7 @@ fn best_ring_triangulation(
     mesh: &TetMesh,
     [a, b]: [u32; 2],
     ring: &[u32],
-    allowed: &dyn Fn(&TetMesh, u32, u32) -> bool,
+    allowed: &dyn Rule,
 ) -> Option<Vec<[usize; 3]>> {
     let n = ring.len();
     // best[i * n + j]: the best worst shape over triangulations of the sub-polygon i..=j, and
@@ -209,10 +228,14 @@ fn best_ring_triangulation(
         best[i * n + i + 1] = (f64::INFINITY, usize::MAX);
     }
     let side = |i: usize, j: usize| j == i + 1 || (i == 0 && j == n - 1);
+    // A diagonal (u, w) brings the edge and the facets (a, u, w) and (b, u, w).
+    let diagonal = |u: u32, w: u32| {
+        allowed.edge(mesh, u, w) && allowed.facet(mesh, [a, u, w]) && allowed.facet(mesh, [b, u, w])
+    };
     for len in 2..n {
         for i in 0..n - len {
             let j = i + len;
-            if !side(i, j) && !allowed(mesh, ring[i], ring[j]) {
+            if !(side(i, j) || diagonal(ring[i], ring[j])) {
                 continue;
             }
             for k in i + 1..j {
@@ -222,7 +245,7 @@ fn best_ring_triangulation(
                 }
                 let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
                 let (ta, tb) = ([a, wj, wi, wk], [b, wj, wk, wi]);
-                if !mesh.positive(ta) || !mesh.positive(tb) {
+                if !mesh.positive(ta) || !mesh.positive(tb) || !allowed.facet(mesh, [wi, wk, wj]) {
                     continue;
                 }
                 let q = worst.min(shape(mesh, ta)).min(shape(mesh, tb));

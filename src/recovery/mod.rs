@@ -214,7 +214,8 @@ fn mesh_surface(
 /// fail, a point is added on the surface at the first crossing and the loop starts again
 /// with the new, smaller pieces. At most `budget` points are added. Sub-edges the flips
 /// leave missing are tried again with edge removals one level deeper each time, down to
-/// `deepest` ([`edges::DEPTH`] for none), before points are added for them. Before the
+/// `deepest` ([`edges::DEPTH`] for none), then with guarded unblocking at that level
+/// ([`edges::recover_edge`]), before points are added for them. Before the
 /// first point, `before_points` is told the triangles (numbers in `part`) that may not be
 /// facets of the mesh, and may stop the recovery.
 fn recover(
@@ -241,14 +242,18 @@ fn recover(
             .into_iter()
             .filter(|e| !edges_done.contains(e))
             .collect();
-        for depth in edges::DEPTH..=deepest {
+        // Free unblocking, deeper each time, then guarded unblocking at the deepest level.
+        let passes = (edges::DEPTH..=deepest)
+            .map(|depth| (depth, false))
+            .chain([(deepest, true)]);
+        for (depth, guarded) in passes {
             if stuck.is_empty() {
                 break;
             }
-            stuck = until_stable(stuck, |&[a, b]| {
-                let done = edges::recover_edge(mesh, &part.protected, a, b, depth)?;
+            stuck = until_stable(stuck, |&e| {
+                let done = edges::recover_edge(mesh, &part.protected, e, depth, guarded)?;
                 if done {
-                    edges_done.insert([a, b]);
+                    edges_done.insert(e);
                 }
                 Ok(done)
             })?;
