@@ -3,7 +3,8 @@
 //! surface must be kept (`-q`, `-a` with `-Y`).
 //!
 //! 1. The kept regions are made as Delaunay as flips allow (Lawson's flips: 2-3, and 3-2
-//!    where an edge of the facet has a shell of three), never across an input triangle.
+//!    where an edge of the facet has a shell of three), never across an input triangle;
+//!    skipped when recovery changed nothing in the Delaunay triangulation.
 //! 2. A tetrahedron whose radius-edge ratio (circumradius over shortest edge) or volume is
 //!    above its bound gets its circumcenter, inserted by a Bowyer–Watson cavity that stops at
 //!    the input triangles and is shrunk until it is star-shaped from the point; Lawson's flips
@@ -131,7 +132,10 @@ impl Refiner<'_> {
     fn run(&mut self, n_input: u32) -> Result<()> {
         let kept = self.kept();
         self.flips_left = 64 * kept.len() + 1024;
-        self.lawson(kept)?;
+        // Every facet of the Delaunay triangulation is locally Delaunay: nothing to flip.
+        if !self.mesh.is_delaunay() {
+            self.lawson(kept)?;
+        }
         self.lfs = self.protecting_radii(n_input);
         let budget = self.point_budget();
         for t in self.kept() {

@@ -57,6 +57,8 @@ pub struct TetMesh {
     edges: EdgeTable,
     /// Points from this id on were added after the Delaunay triangulation.
     first_added: u32,
+    /// A tetrahedron was replaced or a point added since the Delaunay triangulation.
+    changed: bool,
 }
 
 impl TetMesh {
@@ -83,6 +85,7 @@ impl TetMesh {
             scratch: Vec::new(),
             edges: EdgeTable::default(),
             first_added: 0,
+            changed: false,
         };
         mesh.first_added = mesh.points.len() as u32;
         for t in 0..mesh.tets.slots() as u32 {
@@ -106,8 +109,15 @@ impl TetMesh {
         &self.points[v as usize]
     }
 
+    /// Whether the mesh is still the Delaunay triangulation it was built as: no tetrahedron
+    /// replaced and no point added since (added points are the only ones that move).
+    pub fn is_delaunay(&self) -> bool {
+        !self.changed
+    }
+
     /// Adds a point (in no tetrahedron yet) and returns its id.
     pub fn add_point(&mut self, p: Point) -> u32 {
+        self.changed = true;
         self.points.push(p);
         self.vertex_tet.push(NONE);
         (self.points.len() - 1) as u32
@@ -394,6 +404,7 @@ impl TetMesh {
     }
 
     fn apply(&mut self, old: &[u32], new: &[[u32; 4]], gluing: &[[Glue; 4]]) -> Result<Vec<u32>> {
+        self.changed = true;
         for &t in old {
             self.tets.kill(t);
         }
