@@ -393,7 +393,7 @@ fn uniform(seed: u64) -> impl FnMut() -> f64 {
 
 #[test]
 fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
-    use delmesh::recovery::flips::{flip23, remove_edge, Protected};
+    use delmesh::recovery::flips::{flip23, remove_edge, Any, Protected};
     use delmesh::recovery::tetmesh::TetMesh;
     let mut next = uniform(0x2545_f491);
     let points: Vec<[f64; 3]> = (0..40).map(|_| [next(), next(), next()]).collect();
@@ -410,18 +410,17 @@ fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
     protected
         .edges
         .insert([kept[0].min(kept[1]), kept[0].max(kept[1])]);
-    let any = |_: &TetMesh, _: u32, _: u32| true;
     let (mut flipped, mut removed) = (0, 0);
     for round in 0..200u32 {
         let live: Vec<u32> = mesh.tets.live().collect();
         let t = live[(round as usize * 7919) % live.len()];
         let i = (round % 4) as usize;
-        if flip23(&mut mesh, &protected, t, i, &any).unwrap() {
+        if flip23(&mut mesh, &protected, t, i, &Any).unwrap() {
             flipped += 1;
         } else {
             let v = mesh.tets.vertices(t);
             let e = [v[i], v[(i + 1) % 4]];
-            if !e.contains(&u32::MAX) && remove_edge(&mut mesh, &protected, e, &any).unwrap() {
+            if !e.contains(&u32::MAX) && remove_edge(&mut mesh, &protected, e, &Any).unwrap() {
                 removed += 1;
             }
         }

@@ -16,7 +16,7 @@
 //! `checkflipeligibility` with a segment).
 
 use super::faces::crosses;
-use super::flips::{flip23, remove_edge, remove_edge_deep, Protected, Rule};
+use super::flips::{flip23, remove_edge, remove_edge_deep, Any, Protected, Rule};
 use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::Sign;
@@ -94,9 +94,8 @@ pub fn recover_edge(
     depth: u32,
     guarded: bool,
 ) -> Result<bool> {
-    let free = |_: &TetMesh, _: u32, _: u32| true;
     let clear = Clear([a, b]);
-    let rule: &dyn Rule = if guarded { &clear } else { &free };
+    let rule: &dyn Rule = if guarded { &clear } else { &Any };
     let mut seen = rustc_hash::FxHashSet::default();
     'flips: for _ in 0..MAX_FLIPS {
         // A failed advance changes nothing: its crossings still hold after both failed.
@@ -172,7 +171,7 @@ fn advance(
     c: Crossing,
 ) -> Result<bool> {
     match c {
-        Crossing::Facet(t, i) => flip23(mesh, protected, t, i, &|_: &TetMesh, _: u32, _: u32| true),
+        Crossing::Facet(t, i) => flip23(mesh, protected, t, i, &Any),
         Crossing::Edge([x, y], _) => {
             debug_assert_eq!(mesh.orient([x, y, start, end]), Sign::Zero);
             remove_edge(mesh, protected, [x, y], &not_across(x, y, start))
@@ -205,8 +204,7 @@ fn unblock(
     match c {
         Crossing::Facet(t, i) => {
             let (d, [x, y, z]) = mesh.with_apex(t, i);
-            let g = mesh.tets.glued(t, i);
-            let e = mesh.tets.vertices(g >> 2)[(g & 3) as usize];
+            let e = mesh.across(t, i);
             let mut edges = [[x, y], [y, z], [z, x]];
             if e != INFINITE {
                 edges.sort_by_key(|&[u, w]| mesh.positive([d, u, w, e]));

@@ -50,6 +50,15 @@ impl<F: Fn(&TetMesh, u32, u32) -> bool> Rule for F {
     }
 }
 
+/// The rule that allows every new edge and facet.
+pub struct Any;
+
+impl Rule for Any {
+    fn edge(&self, _: &TetMesh, _: u32, _: u32) -> bool {
+        true
+    }
+}
+
 /// Shape of a positively oriented tetrahedron, scale-free, larger is better (0 when flat).
 fn shape(mesh: &TetMesh, q: [u32; 4]) -> f64 {
     let p = q.map(|v| *mesh.point(v));
@@ -74,9 +83,7 @@ pub fn flip23(
     allowed: &dyn Rule,
 ) -> Result<bool> {
     let (d, [x, y, z]) = mesh.with_apex(t, i);
-    let g = mesh.tets.glued(t, i);
-    let (n, j) = (g >> 2, (g & 3) as usize);
-    let e = mesh.tets.vertices(n)[j];
+    let (n, e) = (mesh.tets.neighbor(t, i), mesh.across(t, i));
     if protected.facet([x, y, z]) || d == INFINITE || e == INFINITE || !allowed.edge(mesh, d, e) {
         return Ok(false);
     }

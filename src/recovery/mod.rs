@@ -260,9 +260,7 @@ fn recover(
         }
         if !stuck.is_empty() {
             for [a, b] in stuck {
-                if std::mem::take(&mut first_point) {
-                    before_points(&absent(mesh, part, &faces_done))?;
-                }
+                before_first(&mut first_point, mesh, part, &faces_done, before_points)?;
                 spend(&mut budget, || format!("sub-edge ({a}, {b})"))?;
                 if let Some(c) = edges::first_crossing(mesh, a, b)? {
                     steiner::split_subedge(mesh, part, a, b, c)?;
@@ -286,9 +284,7 @@ fn recover(
             return Ok(());
         }
         for (f, t) in stuck {
-            if std::mem::take(&mut first_point) {
-                before_points(&absent(mesh, part, &faces_done))?;
-            }
+            before_first(&mut first_point, mesh, part, &faces_done, before_points)?;
             spend(&mut budget, || format!("triangle {f}"))?;
             if let Some(&(e, _)) = faces::crossing_edges(mesh, t).first() {
                 steiner::split_subface(mesh, part, f, t, e)?;
@@ -327,9 +323,18 @@ fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[
     inside.iter().flatten().all(|&v| v < n).then_some(inside)
 }
 
-/// The triangles (numbers in `part`) with a subface that is not a facet of `mesh` (those in
-/// `present` are).
-fn absent(mesh: &mut TetMesh, part: &Partition, present: &HashSet<[u32; 3]>) -> Vec<usize> {
+/// Before the first point (`first` set, then cleared): tells `before_points` the triangles
+/// (numbers in `part`) with a subface that is not a facet of `mesh` (those in `present` are).
+fn before_first(
+    first: &mut bool,
+    mesh: &mut TetMesh,
+    part: &Partition,
+    present: &HashSet<[u32; 3]>,
+    before_points: &mut dyn FnMut(&[usize]) -> Result<()>,
+) -> Result<()> {
+    if !std::mem::take(first) {
+        return Ok(());
+    }
     let mut absent: Vec<usize> = part
         .all_subfaces()
         .into_iter()
@@ -337,7 +342,7 @@ fn absent(mesh: &mut TetMesh, part: &Partition, present: &HashSet<[u32; 3]>) -> 
         .map(|(k, _)| k)
         .collect();
     absent.dedup();
-    absent
+    before_points(&absent)
 }
 
 /// Counts one added point against `budget`.

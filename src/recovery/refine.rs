@@ -130,15 +130,16 @@ struct Refiner<'a> {
 
 impl Refiner<'_> {
     fn run(&mut self, n_input: u32) -> Result<()> {
-        let kept = self.kept();
+        let mut kept = self.kept();
         self.flips_left = 64 * kept.len() + 1024;
         // Every facet of the Delaunay triangulation is locally Delaunay: nothing to flip.
         if !self.mesh.is_delaunay() {
             self.lawson(kept)?;
+            kept = self.kept();
         }
         self.lfs = self.protecting_radii(n_input);
         let budget = self.point_budget();
-        for t in self.kept() {
+        for t in kept {
             self.queue.push_back((t, self.mesh.tets.vertices(t)));
         }
         let mut inserted = 0;
@@ -541,7 +542,7 @@ impl Refiner<'_> {
         if self.surface.facet([x, y, z]) || !self.regions.kept(n) {
             return Ok(None);
         }
-        let e = self.mesh.tets.vertices(n)[(self.mesh.tets.glued(t, i) & 3) as usize];
+        let e = self.mesh.across(t, i);
         let q = self.mesh.tets.vertices(t);
         if q.contains(&INFINITE) || e == INFINITE {
             return Ok(None);

@@ -26,7 +26,7 @@
 
 use rustc_hash::FxHashMap as HashMap;
 
-use super::flips::{remove_edge_deep, Protected};
+use super::flips::{remove_edge_deep, Any, Protected};
 use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
 use super::until_stable;
@@ -452,8 +452,7 @@ fn dissolve(mesh: &mut TetMesh, protected: &Protected, s: u32) -> Result<()> {
         let mut removed = false;
         for w in link {
             let mut budget = DISSOLVE_BUDGET;
-            let any = |_: &TetMesh, _: u32, _: u32| true;
-            if remove_edge_deep(mesh, protected, [s, w], &any, DISSOLVE_DEPTH, &mut budget)? {
+            if remove_edge_deep(mesh, protected, [s, w], &Any, DISSOLVE_DEPTH, &mut budget)? {
                 removed = true;
                 break;
             }

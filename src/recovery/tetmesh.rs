@@ -316,6 +316,12 @@ impl TetMesh {
         stored[(r + 1) % 3] == s[1]
     }
 
+    /// The vertex of the tetrahedron across facet `i` of `t` that is not on that facet.
+    pub fn across(&self, t: u32, i: usize) -> u32 {
+        let g = self.tets.glued(t, i);
+        self.tets.vertices(g >> 2)[(g & 3) as usize]
+    }
+
     /// `(apex, [x, y, z])` with `apex` the vertex `i` of `t` and `(apex, x, y, z)` positively
     /// oriented (an even permutation of the stored order).
     pub fn with_apex(&self, t: u32, i: usize) -> (u32, [u32; 3]) {
