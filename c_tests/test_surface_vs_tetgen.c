@@ -186,8 +186,7 @@ static void run_delmesh(const Case *c, double ratio, Output *o) {
 /* Cases on which delmesh is known to stop with DELMESH_ERROR_LIMIT (the points it adds on
  * coplanar pieces of the surface, rounded, defeat recovery): reported as such, so that the list
  * is the record of what is still short. */
-static const char *const known_limits[] = {"Chazelle k=4", "Chazelle k=5", "Chazelle k=6", "Chazelle k=7",
-                                           "anchor"};
+static const char *const known_limits[] = {"Chazelle k=4", "Chazelle k=5", "Chazelle k=6", "Chazelle k=7"};
 /* Cases on which delmesh's refined mesh has more tetrahedra than TetGen -pq1.414Y's + 20%: on
  * handle, the points recovery leaves near the surface (where TetGen -pY needs none) ask for more
  * refinement; on dragknob, TetGen stops after 7 points with 404 of its 451 tetrahedra above the

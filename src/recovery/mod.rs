@@ -13,6 +13,8 @@
 //!    convex hull.
 //! 3. Missing edges, then missing triangles, are recovered (§5.2); with `keep_convex_hull`,
 //!    the convex hull's triangles ([`hull`]) too, and points added on those alone stay there.
+//!    Where that fails (a `Limit` error), the whole is tried again with, for each sub-edge
+//!    flips leave missing, a point inside the volume first ([`interior`]).
 //! 4. Points added on the surface are moved off it, then merged away, or removed where their
 //!    star, or their star and a few layers around it, can be filled again without them by
 //!    this same recovery with no point allowed (§5.3, [`suppress`]).
@@ -34,6 +36,7 @@ pub mod edges;
 pub mod faces;
 pub mod flips;
 mod hull;
+pub mod interior;
 pub mod partition;
 mod refine;
 pub mod steiner;
@@ -105,7 +108,16 @@ pub fn tetrahedralize_surface(
         triangles: tris,
         done: false,
     };
-    match mesh_surface(points, tris, options, &mut intersections) {
+    // Points on the surface alone first; where they cannot do it, points inside the volume
+    // where those recover a sub-edge ([`interior`]), before any on the surface. The first
+    // attempt's error is the one reported when both fail.
+    let attempt = match mesh_surface(points, tris, options, &mut intersections, false) {
+        Err(e) if e.kind == ErrorKind::Limit => {
+            mesh_surface(points, tris, options, &mut intersections, true).map_err(|_| e)
+        }
+        other => other,
+    };
+    match attempt {
         Ok(mesh) => Ok(mesh),
         // A self-intersection is the first cause to report.
         Err(e) => intersections.run().and(Err(e)),
@@ -158,6 +170,7 @@ fn mesh_surface(
     tris: &[[u32; 3]],
     options: &SurfaceOptions,
     intersections: &mut IntersectionCheck,
+    interior: bool,
 ) -> Result<Mesh> {
     check_options(options)?;
     let isolated = validate::isolated_vertices(points, tris);
@@ -177,6 +190,7 @@ fn mesh_surface(
         &mut part,
         budget,
         edges::DEEPEST,
+        interior,
         &mut |absent| intersections.run_on(Some(absent)),
     )?;
     let normals: Vec<Point> = bounding.iter().map(|f| unit_normal(points, *f)).collect();
@@ -215,7 +229,8 @@ fn mesh_surface(
 /// with the new, smaller pieces. At most `budget` points are added. Sub-edges the flips
 /// leave missing are tried again with edge removals one level deeper each time, down to
 /// `deepest` ([`edges::DEPTH`] for none), then with guarded unblocking at that level
-/// ([`edges::recover_edge`]), before points are added for them. Before the
+/// ([`edges::recover_edge`]), and, when `interior`, by a point inside the volume
+/// ([`interior::recover_edge`]), before points are added for them. Before the
 /// first point, `before_points` is told the triangles (numbers in `part`) that may not be
 /// facets of the mesh, and may stop the recovery.
 fn recover(
@@ -223,6 +238,7 @@ fn recover(
     part: &mut Partition,
     mut budget: usize,
     deepest: u32,
+    interior: bool,
     before_points: &mut dyn FnMut(&[usize]) -> Result<()>,
 ) -> Result<()> {
     let mut first_point = true;
@@ -257,6 +273,24 @@ fn recover(
                 }
                 Ok(done)
             })?;
+        }
+        if interior && !stuck.is_empty() {
+            // A point inside the volume, where one recovers the sub-edge, before any on it.
+            let before = stuck.len();
+            stuck = until_stable(stuck, |&e| {
+                let may_add = budget > 0;
+                let Some(added) = interior::recover_edge(mesh, &part.protected, e, may_add)? else {
+                    return Ok(false);
+                };
+                if added {
+                    spend(&mut budget, || format!("sub-edge ({}, {})", e[0], e[1]))?;
+                }
+                edges_done.insert(e);
+                Ok(true)
+            })?;
+            if stuck.len() < before {
+                continue;
+            }
         }
         if !stuck.is_empty() {
             for [a, b] in stuck {
@@ -299,7 +333,15 @@ fn recover(
 fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
     let mut mesh = enclosed_delaunay(points, triangles, &[]).ok()?;
     let mut part = Partition::new(triangles);
-    recover(&mut mesh, &mut part, 0, edges::DEPTH, &mut |_| Ok(())).ok()?;
+    recover(
+        &mut mesh,
+        &mut part,
+        0,
+        edges::DEPTH,
+        false,
+        &mut |_| Ok(()),
+    )
+    .ok()?;
     let n = points.len() as u32;
     let start = mesh.search_ball(n, |_, t| Some(t))?;
     let mut outside = vec![false; mesh.tets.slots()];

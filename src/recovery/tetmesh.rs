@@ -381,14 +381,32 @@ impl TetMesh {
         self.apply(old, new, &gluing)
     }
 
-    /// [`TetMesh::replace`] when `new` fills exactly the region of `old`, facet for facet;
-    /// `None`, changing nothing, when it does not.
+    /// [`TetMesh::replace`] when `new` fills exactly the region of `old`, facet for facet,
+    /// and every glued pair of facets is oppositely oriented (each new tetrahedron on the side
+    /// of the old one it borders outside, two new ones on opposite sides of their facet);
+    /// `None`, changing nothing, when it does not. With every new tetrahedron positive, the
+    /// new ones then cover the region once: their oriented boundary is the region's.
     pub fn try_replace(&mut self, old: &[u32], new: &[[u32; 4]]) -> Result<Option<Vec<u32>>> {
         let outer = self.outer_facets(old);
         match match_facets(&outer, new) {
-            Ok(gluing) => self.apply(old, new, &gluing).map(Some),
-            Err(_) => Ok(None),
+            Ok(gluing) if self.opposite(new, &gluing) => self.apply(old, new, &gluing).map(Some),
+            _ => Ok(None),
         }
+    }
+
+    /// Whether every facet of `new` is glued to a facet of the opposite orientation.
+    fn opposite(&self, new: &[[u32; 4]], gluing: &[[Glue; 4]]) -> bool {
+        let facet = |q: &[u32; 4], i: usize| FACE[i].map(|k| q[k]);
+        let reversed = |a: [u32; 3], b: [u32; 3]| {
+            let r = b.iter().position(|&x| x == a[0]).unwrap_or(0);
+            b[(r + 2) % 3] == a[1]
+        };
+        new.iter().zip(gluing).all(|(q, glue)| {
+            glue.iter().enumerate().all(|(i, g)| match *g {
+                Glue::Outer(f) => reversed(facet(q, i), self.facet(f >> 2, (f & 3) as usize)),
+                Glue::Inner(m, j) => reversed(facet(q, i), facet(&new[m], j)),
+            })
+        })
     }
 
     /// Replaces the tetrahedra `old` by the cone from vertex `s` over their boundary: the
@@ -478,6 +496,19 @@ impl TetMesh {
                         "facet {i} of tetrahedron {t} is glued to another facet"
                     ));
                 }
+                if self.in_front(n, j, self.facet(t, i)) {
+                    return Err(format!(
+                        "tetrahedra {t} and {n} lie on the same side of their facet"
+                    ));
+                }
+            }
+        }
+        let mut seen = FxHashSet::default();
+        for t in self.tets.live() {
+            let mut v = self.tets.vertices(t);
+            v.sort_unstable();
+            if !seen.insert(v) {
+                return Err(format!("two tetrahedra have the vertices {v:?}"));
             }
         }
         for (v, &t) in self.vertex_tet.iter().enumerate() {
