@@ -536,6 +536,65 @@ fn an_interior_point_recovers_edges_through_a_shell() {
     );
 }
 
+/// 3-2 flips that improve the worst shape, on a Delaunay mesh with some facets protected:
+/// the mesh stays valid with the protected facets, each flip takes one tetrahedron away, the
+/// volume stays, and the worst shape (volume over the cube of the root of the summed squared
+/// edges) does not get worse.
+#[test]
+fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
+    use delmesh::recovery::flips::{improve_by_32_flips, Protected};
+    use delmesh::recovery::tetmesh::{key, TetMesh};
+    let finite = |mesh: &TetMesh| -> Vec<[[f64; 3]; 4]> {
+        mesh.tets
+            .live()
+            .map(|t| mesh.tets.vertices(t))
+            .filter(|v| !v.contains(&u32::MAX))
+            .map(|v| v.map(|x| *mesh.point(x)))
+            .collect()
+    };
+    let worst = |tets: &[[[f64; 3]; 4]]| {
+        tets.iter()
+            .map(|p| {
+                let mut s = 0.0;
+                for i in 0..4 {
+                    for j in i + 1..4 {
+                        s += (0..3).map(|k| (p[i][k] - p[j][k]).powi(2)).sum::<f64>();
+                    }
+                }
+                volume6(*p) / (s * s.sqrt())
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut next = uniform(0x3_2f11);
+    let points: Vec<[f64; 3]> = (0..200).map(|_| [next(), next(), next()]).collect();
+    let used: Vec<u32> = (0..200).collect();
+    let mut mesh = TetMesh::delaunay(points, &used).unwrap();
+    let mut protected = Protected::default();
+    for t in mesh.tets.live().step_by(5).collect::<Vec<_>>() {
+        let f = mesh.facet(t, 0);
+        if !f.contains(&u32::MAX) {
+            protected.facets.insert(key(f));
+            for (a, b) in [(f[0], f[1]), (f[1], f[2]), (f[2], f[0])] {
+                protected.edges.insert([a.min(b), a.max(b)]);
+            }
+        }
+    }
+    let before = finite(&mesh);
+    let all = mesh.tets.live().collect();
+    let flips =
+        improve_by_32_flips(&mut mesh, &protected, f64::INFINITY, all, &mut |_, _| {}).unwrap();
+    mesh.validate().unwrap();
+    let after = finite(&mesh);
+    assert!(flips > 0);
+    assert_eq!(after.len() + flips, before.len());
+    let volume = |tets: &[[[f64; 3]; 4]]| tets.iter().map(|p| volume6(*p)).sum::<f64>();
+    assert!((volume(&after) - volume(&before)).abs() <= 1e-12 * volume(&before));
+    assert!(worst(&after) >= worst(&before));
+    for f in &protected.facets {
+        assert!(mesh.find_face(*f).is_some(), "protected facet {f:?} lost");
+    }
+}
+
 #[test]
 fn interior_points_are_merged_or_refilled_away() {
     use delmesh::recovery::flips::Protected;

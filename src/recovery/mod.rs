@@ -21,7 +21,8 @@
 //! 5. Regions are found by flood fill from the box across non-input facets; the box region
 //!    is dropped (§5.3, last remark).
 //! 6. Optional quality refinement with interior points only ([`refine`]: radius-edge and
-//!    volume bounds, TetGen's `-q`/`-a` with `-Y`).
+//!    volume bounds, TetGen's `-q`/`-a` with `-Y`), followed, with a radius-edge bound, by
+//!    3-2 flips that improve the worst shape ([`flips::improve_by_32_flips`]).
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
@@ -218,6 +219,16 @@ fn mesh_surface(
             options.max_radius_edge_ratio,
             points.len() as u32,
         )?;
+    }
+    if options.max_radius_edge_ratio > 0.0 {
+        // Fewer and better tetrahedra in the kept regions (TetGen optimizes its refined mesh
+        // so).
+        let bound = options.max_radius_edge_ratio;
+        let kept = mesh.tets.live().filter(|&t| regions.kept(t)).collect();
+        flips::improve_by_32_flips(&mut mesh, &part.protected, bound, kept, &mut |old, new| {
+            let c = regions.component[old as usize];
+            regions.assign(new, c);
+        })?;
     }
     classify::assemble(&mut mesh, points.len(), tris, (&regions, refined), &|v| {
         part.host.contains_key(&v)

@@ -370,6 +370,57 @@ impl TetMesh {
         }
     }
 
+    /// [`TetMesh::shell`] of an edge with exactly three tetrahedra around it (the 3-2 flip's),
+    /// without allocating; `None` for any other count.
+    pub fn shell3(&self, t: u32, a: u32, b: u32) -> Option<([u32; 3], [u32; 3])> {
+        let [c, d] = self.others(t, a, b);
+        let cross = |from: u32, opposite: u32| {
+            let i = self
+                .tets
+                .vertices(from)
+                .iter()
+                .position(|&x| x == opposite)?;
+            Some(self.tets.neighbor(from, i))
+        };
+        let t1 = cross(t, c)?;
+        let [_, n1] = self.others(t1, a, b);
+        let t2 = cross(t1, d)?;
+        (t1 != t && t2 != t && cross(t2, n1)? == t).then_some(([t, t1, t2], [c, d, n1]))
+    }
+
+    /// The 3-2 flip of edge `(a, b)` whose shell and ring [`TetMesh::shell3`] gave: the
+    /// tetrahedra `(a, w2, w0, w1)` and `(b, w2, w1, w0)`, glued directly (no facet matching);
+    /// orientation is the caller's business. Returns their ids.
+    pub fn flip32(
+        &mut self,
+        [a, b]: [u32; 2],
+        shell: [u32; 3],
+        [w0, w1, w2]: [u32; 3],
+    ) -> Result<Vec<u32>> {
+        // The facet of shell tetrahedron k opposite x, glued outside.
+        let outside = |k: usize, x: u32| {
+            let v = self.tets.vertices(shell[k]);
+            let i = v.iter().position(|&y| y == x).unwrap_or(0);
+            Glue::Outer(self.tets.glued(shell[k], i))
+        };
+        let gluing = [
+            [
+                Glue::Inner(1, 0),
+                outside(0, b),
+                outside(1, b),
+                outside(2, b),
+            ],
+            [
+                Glue::Inner(0, 0),
+                outside(0, a),
+                outside(2, a),
+                outside(1, a),
+            ],
+        ];
+        let new = [[a, w2, w0, w1], [b, w2, w1, w0]];
+        self.apply(&shell, &new, &gluing)
+    }
+
     /// Replaces the tetrahedra `old` by `new` (vertex quadruples), which must fill the same
     /// region: every facet of a new tetrahedron is either a boundary facet of `old` or a facet
     /// of exactly one other new tetrahedron, and every boundary facet of `old` is used. The
