@@ -185,7 +185,13 @@ fn mesh_surface(
     }
     let mut mesh = enclosed_delaunay(points, &bounding, &isolated)?;
     let mut part = Partition::new(&bounding);
-    let budget = 16 * bounding.len() + 1024;
+    // The second attempt follows a failure: a quarter as many points as triangles (anchor
+    // meshes well within it), so that an input it cannot mesh either fails in seconds.
+    let budget = if interior {
+        bounding.len() / 4 + 64
+    } else {
+        16 * bounding.len() + 1024
+    };
     recover(
         &mut mesh,
         &mut part,
