@@ -335,31 +335,48 @@ fn improving_32_flip(
     t: u32,
 ) -> Result<Option<Vec<u32>>> {
     let v = mesh.tets.vertices(t);
-    for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
-        let (a, b) = (v[i], v[j]);
-        if protected.edge(a, b) {
-            continue;
-        }
-        let Some((shell, ring)) = mesh.shell3(t, a, b) else {
-            continue;
-        };
-        if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
-            continue;
-        }
-        let [w0, w1, w2] = ring;
-        let new = [[a, w2, w0, w1], [b, w2, w1, w0]];
+    let improves = |mesh: &TetMesh, shell: [u32; 3], new: [[u32; 4]; 2]| {
         let worst = |tets: &mut dyn Iterator<Item = [u32; 4]>| {
             tets.map(|q| shape(mesh, q)).fold(f64::INFINITY, f64::min)
         };
-        let before = worst(&mut shell.iter().map(|&s| mesh.tets.vertices(s)));
-        // Cheapest test first: the shape (of the tetrahedra's absolute volumes), then the
-        // exact orientation and the bound.
         let within = |q: [u32; 4]| radius_edge(q.map(|v| *mesh.point(v))) <= bound;
-        if worst(&mut new.iter().copied()) > before
-            && new.iter().all(|&q| mesh.positive(q) && within(q))
-        {
-            return mesh.flip32([a, b], shell, ring).map(Some);
+        worst(&mut new.into_iter()) > worst(&mut shell.iter().map(|&s| mesh.tets.vertices(s)))
+            && new.iter().all(|&q| within(q))
+    };
+    for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+        if let Some(new) = flip32(mesh, protected, t, [v[i], v[j]], &improves)? {
+            return Ok(Some(new));
         }
     }
     Ok(None)
+}
+
+/// What [`flip32`] asks of a flip: the mesh, the three tetrahedra replaced, the two new ones.
+pub type Accept32<'a> = dyn Fn(&TetMesh, [u32; 3], [[u32; 4]; 2]) -> bool + 'a;
+
+/// The 3-2 flip of edge `(a, b)` of `t`: when the edge has a shell of three tetrahedra, no
+/// protected edge or facet is lost, `accept(mesh, shell, new)` agrees (it is asked first,
+/// before the exact orientations) and both new tetrahedra are positive; their ids.
+pub fn flip32(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    t: u32,
+    [a, b]: [u32; 2],
+    accept: &Accept32<'_>,
+) -> Result<Option<Vec<u32>>> {
+    if protected.edge(a, b) {
+        return Ok(None);
+    }
+    let Some((shell, ring)) = mesh.shell3(t, a, b) else {
+        return Ok(None);
+    };
+    if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
+        return Ok(None);
+    }
+    let [w0, w1, w2] = ring;
+    let new = [[a, w0, w1, w2], [b, w0, w2, w1]];
+    if !accept(mesh, shell, new) || !new.iter().all(|&q| mesh.positive(q)) {
+        return Ok(None);
+    }
+    mesh.flip32([a, b], shell, ring).map(Some)
 }

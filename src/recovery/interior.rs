@@ -86,8 +86,8 @@ fn replace_shell(
     // The facets inside a part vanish: none may be protected.
     let usable =
         |p: &Part| !p.middle.is_empty() && !p.middle.iter().any(|&w| protected.facet([u, v, w]));
-    let planar = mesh.orient([s, e, u, v]) == Sign::Zero;
-    if planar {
+    let side = mesh.orient([s, e, u, v]);
+    if side == Sign::Zero {
         // Both sides go together, and the edge uv with them.
         if protected.edge(u, v) || !parts.iter().all(usable) {
             return Ok(None);
@@ -100,7 +100,7 @@ fn replace_shell(
             may_add,
         );
     }
-    let lens = if mesh.orient([s, e, u, v]) == Sign::Positive {
+    let lens = if side == Sign::Positive {
         [s, e, u, v]
     } else {
         [e, s, u, v]

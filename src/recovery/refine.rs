@@ -30,7 +30,7 @@ use std::collections::VecDeque;
 
 use super::by_vertex::ByVertex;
 use super::classify::Regions;
-use super::flips::Protected;
+use super::flips::{flip32, Protected};
 use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{circumcenter, dist, dist2, dot, sub, tet_volume, triangle_circumcenter};
@@ -555,38 +555,14 @@ impl Refiner<'_> {
         if new.iter().all(|&q| self.mesh.positive(q)) {
             return self.mesh.replace(&[t, n], &new).map(Some);
         }
-        for [a, b] in [[x, y], [y, z], [z, x]] {
-            if let Some(created) = self.flip32(t, a, b)? {
+        // A 3-2 flip around an edge of the facet, inside the kept regions.
+        let kept = |_: &TetMesh, shell: [u32; 3], _| shell.iter().all(|&u| self.regions.kept(u));
+        for edge in [[x, y], [y, z], [z, x]] {
+            if let Some(created) = flip32(self.mesh, self.surface.protected, t, edge, &kept)? {
                 return Ok(Some(created));
             }
         }
         Ok(None)
-    }
-
-    /// The 3-2 flip of edge `(a, b)` of `t` when its shell has three tetrahedra and no
-    /// input edge or triangle is lost.
-    fn flip32(&mut self, t: u32, a: u32, b: u32) -> Result<Option<Vec<u32>>> {
-        if self.surface.edge(a, b) {
-            return Ok(None);
-        }
-        let Some((shell, ring)) = self.mesh.shell(t, a, b, 3) else {
-            return Ok(None);
-        };
-        if ring.len() != 3
-            || ring.contains(&INFINITE)
-            || ring.iter().any(|&w| self.surface.facet([a, b, w]))
-            || !shell.iter().all(|&u| self.regions.kept(u))
-        {
-            return Ok(None);
-        }
-        let new = [
-            [a, ring[0], ring[1], ring[2]],
-            [b, ring[0], ring[2], ring[1]],
-        ];
-        if !new.iter().all(|&q| self.mesh.positive(q)) {
-            return Ok(None);
-        }
-        self.mesh.replace(&shell, &new).map(Some)
     }
 
     /// The protecting-ball radius of every input vertex (TetGen's feature size with `-Y`):

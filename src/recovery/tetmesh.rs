@@ -311,9 +311,7 @@ impl TetMesh {
     /// as the oriented triangle `s`: the apex of `t` sees its stored facet counter-clockwise,
     /// so `t` is in front of `s` iff `s` is an even rotation of it.
     pub fn in_front(&self, t: u32, i: usize, s: [u32; 3]) -> bool {
-        let stored = self.facet(t, i);
-        let r = stored.iter().position(|&x| x == s[0]).unwrap_or(0);
-        stored[(r + 1) % 3] == s[1]
+        even_rotation(self.facet(t, i), s)
     }
 
     /// The vertex of the tetrahedron across facet `i` of `t` that is not on that facet.
@@ -389,7 +387,7 @@ impl TetMesh {
     }
 
     /// The 3-2 flip of edge `(a, b)` whose shell and ring [`TetMesh::shell3`] gave: the
-    /// tetrahedra `(a, w2, w0, w1)` and `(b, w2, w1, w0)`, glued directly (no facet matching);
+    /// tetrahedra `(a, w0, w1, w2)` and `(b, w0, w2, w1)`, glued directly (no facet matching);
     /// orientation is the caller's business. Returns their ids.
     pub fn flip32(
         &mut self,
@@ -397,27 +395,28 @@ impl TetMesh {
         shell: [u32; 3],
         [w0, w1, w2]: [u32; 3],
     ) -> Result<Vec<u32>> {
-        // The facet of shell tetrahedron k opposite x, glued outside.
+        // The facet of shell tetrahedron k, (a, b, w[k], w[k+1]), opposite x, glued outside.
         let outside = |k: usize, x: u32| {
             let v = self.tets.vertices(shell[k]);
             let i = v.iter().position(|&y| y == x).unwrap_or(0);
             Glue::Outer(self.tets.glued(shell[k], i))
         };
+        // Facet i of a new tetrahedron is opposite its vertex i.
         let gluing = [
             [
                 Glue::Inner(1, 0),
-                outside(0, b),
                 outside(1, b),
                 outside(2, b),
+                outside(0, b),
             ],
             [
                 Glue::Inner(0, 0),
+                outside(1, a),
                 outside(0, a),
                 outside(2, a),
-                outside(1, a),
             ],
         ];
-        let new = [[a, w2, w0, w1], [b, w2, w1, w0]];
+        let new = [[a, w0, w1, w2], [b, w0, w2, w1]];
         self.apply(&shell, &new, &gluing)
     }
 
@@ -448,14 +447,10 @@ impl TetMesh {
     /// Whether every facet of `new` is glued to a facet of the opposite orientation.
     fn opposite(&self, new: &[[u32; 4]], gluing: &[[Glue; 4]]) -> bool {
         let facet = |q: &[u32; 4], i: usize| FACE[i].map(|k| q[k]);
-        let reversed = |a: [u32; 3], b: [u32; 3]| {
-            let r = b.iter().position(|&x| x == a[0]).unwrap_or(0);
-            b[(r + 2) % 3] == a[1]
-        };
         new.iter().zip(gluing).all(|(q, glue)| {
             glue.iter().enumerate().all(|(i, g)| match *g {
-                Glue::Outer(f) => reversed(facet(q, i), self.facet(f >> 2, (f & 3) as usize)),
-                Glue::Inner(m, j) => reversed(facet(q, i), facet(&new[m], j)),
+                Glue::Outer(f) => !self.in_front(f >> 2, (f & 3) as usize, facet(q, i)),
+                Glue::Inner(m, j) => !even_rotation(facet(&new[m], j), facet(q, i)),
             })
         })
     }
@@ -572,6 +567,12 @@ impl TetMesh {
         }
         Ok(())
     }
+}
+
+/// Whether `s` is `stored` (the same three vertices) turned the same way round.
+fn even_rotation(stored: [u32; 3], s: [u32; 3]) -> bool {
+    let r = stored.iter().position(|&x| x == s[0]).unwrap_or(0);
+    stored[(r + 1) % 3] == s[1]
 }
 
 /// Where facet `i` of a new tetrahedron is glued.
