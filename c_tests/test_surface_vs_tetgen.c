@@ -32,7 +32,7 @@
  *
  * Compared with TetGen, where its result passed the checks and kept -Y's promise: on every
  * generated case without volume bounds, delmesh's Steiner points without refinement <= TetGen's
- * with -pY (both recover the same boundary with interior points only; with refinement the counts
+ * with -pY (known_more_steiner lists the shortfalls; both recover the same boundary with interior points only; with refinement the counts
  * are printed, not compared); with the bound 1.414, delmesh's tetrahedron count within 20% of
  * TetGen's -pq1.414Y where TetGen met its volume bounds and made at least 100
  * tetrahedra (known_more_tetrahedra lists the shortfalls). Where TetGen fails, delmesh still runs and is checked, without comparison.
@@ -187,12 +187,18 @@ static void run_delmesh(const Case *c, double ratio, Output *o) {
 /* Cases on which delmesh is known to stop with DELMESH_ERROR_LIMIT (the points it adds on
  * coplanar pieces of the surface, rounded, defeat recovery): reported as such, so that the list
  * is the record of what is still short. */
-static const char *const known_limits[] = {"Chazelle k=4", "Chazelle k=5", "Chazelle k=6", "Chazelle k=7"};
+static const char *const known_limits[] = {"Chazelle k=3", "Chazelle k=4", "Chazelle k=5", "Chazelle k=6",
+                                           "Chazelle k=7"};
+/* Generated cases on which delmesh needs more Steiner points than TetGen -pY without refinement:
+ * Chazelle k=2, 8 against 6 (one of its points on the surface fills the pieces of its star
+ * without it, where no move fits, and the others stay as they were placed). */
+static const char *const known_more_steiner[] = {"Chazelle k=2"};
 /* Cases on which delmesh's refined mesh has more tetrahedra than TetGen -pq1.414Y's + 20%: on
  * dragknob, TetGen stops after 7 points with 404 of its 451 tetrahedra above the bound, delmesh
  * adds 5 and leaves 607 of its 646 above it (recovery leaves more interior edges than TetGen's,
- * and the 3-2 flips after refinement may not make a tetrahedron above the bound). */
-static const char *const known_more_tetrahedra[] = {"dragknob"};
+ * and the 3-2 flips after refinement may not make a tetrahedron above the bound); on Chazelle k=2,
+ * 224 against 183, where TetGen's 6 points and delmesh's 8 leave 174 and 210 above the bound. */
+static const char *const known_more_tetrahedra[] = {"dragknob", "Chazelle k=2"};
 
 static int listed(const char *name, const char *const *list, size_t n) {
   for (size_t i = 0; i < n; i++)
@@ -351,10 +357,16 @@ static void run_case(const Case *c) {
     check_note("%s | Steiner points: delmesh %zu (q1.414: %zu), TetGen -pY %zu (-pq1.414Y: %s)", c->name,
                steiner_of(c, &out[OURS_DEFAULT]), out[OURS_QUALITY].ok ? steiner_of(c, &out[OURS_QUALITY]) : 0,
                steiner_of(c, &out[TETGEN_PY]), out[TETGEN_PQ].ok ? "ok" : "failed");
-  if (c->generated && py && out[OURS_DEFAULT].ok)
-    check_case(steiner_of(c, &out[OURS_DEFAULT]) <= steiner_of(c, &out[TETGEN_PY]),
-               "%s | Steiner points without refinement: delmesh %zu <= TetGen -pY %zu", c->name,
-               steiner_of(c, &out[OURS_DEFAULT]), steiner_of(c, &out[TETGEN_PY]));
+  if (c->generated && py && out[OURS_DEFAULT].ok) {
+    size_t ours = steiner_of(c, &out[OURS_DEFAULT]), theirs = steiner_of(c, &out[TETGEN_PY]);
+    if (ours > theirs && listed(c->name, known_more_steiner, sizeof known_more_steiner / sizeof known_more_steiner[0]))
+      check_note("%s | known shortfall (listed in known_more_steiner): Steiner points without refinement: delmesh %zu, "
+                 "TetGen -pY %zu",
+                 c->name, ours, theirs);
+    else
+      check_case(ours <= theirs, "%s | Steiner points without refinement: delmesh %zu <= TetGen -pY %zu", c->name, ours,
+                 theirs);
+  }
   /* Tetrahedron counts are compared where TetGen met its volume bounds (-Y often stops short of
    * them) and made at least MIN_COMPARED_TETS (below that, triangulations of the same points
    * differ by more than the spread: the icosahedron has 15 or 20 tetrahedra without a point). */
@@ -896,7 +908,7 @@ int main(int argc, char **argv) {
   for (size_t i = 0; i < sizeof twists / sizeof twists[0]; i++) generated_case(surface_twisted_prism(&s, twists[i]), &s);
   /* k = 4..7: TetGen -pY meshes k = 4 and 5 and fails from 6 on (assertion, endless loop); delmesh
    * stops with DELMESH_ERROR_LIMIT on all of them, after seconds each, so larger k only cost time. */
-  for (int k = 4; k <= 7; k++) generated_case(surface_chazelle(&s, k), &s);
+  for (int k = 2; k <= 7; k++) generated_case(surface_chazelle(&s, k), &s);
   generated_case(surface_terrain(&s, 20), &s);
   generated_case(surface_slab(&s, 1), &s);
   generated_case(surface_slab(&s, 10), &s);

@@ -15,8 +15,12 @@
 //! Points added on a planar face are rounded off its plane, and where many crowd there the
 //! move can find no place: the point is then merged on the surface into a neighbour on the
 //! same input triangle or edge (the paper's merging, [`collapse_on_surface`]), and a point
-//! that can do neither is tried again after the others. The outline is triangulated without
-//! flat triangles (three points of one input edge, which rounding may show as a sliver).
+//! that can do neither is tried again after the others. Last, for the points still left, a
+//! piece no move fits is filled without the point: its boundary, or that boundary grown by a
+//! few layers of tetrahedra, is tetrahedralized by this module's recovery with no point
+//! allowed ([`fill_piece`]; Chazelle's polyhedron with two notches a side meshes so). The
+//! outline is triangulated without flat triangles (three points of one input edge, which
+//! rounding may show as a sliver).
 //!
 //! The interior points then go where they can ([`merge_interior`]): collapsed onto a
 //! neighbour (the paper's merging), or removed by filling their star, or their star and a few
@@ -34,6 +38,7 @@ use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{add, dist, norm, sub};
 use crate::io::surface::triangulate_polygon_avoiding;
 use crate::predicates::Point;
+use crate::triangulation::tets::FACE;
 
 /// Halvings of the move before giving up.
 const MOVES: usize = 48;
@@ -72,15 +77,18 @@ pub fn suppress_all(
     inside.sort_unstable();
     on_edges.sort_unstable();
     // A point that cannot leave may after its neighbours have: passes while some leave.
-    let pending: Vec<u32> = inside.into_iter().chain(on_edges).collect();
+    // Pieces of a star filled without the point come last, for the points left then.
+    let mut stuck: Vec<u32> = inside.into_iter().chain(on_edges).collect();
     let mut errors: HashMap<u32, Error> = HashMap::default();
-    let stuck = until_stable(pending, |&v| match suppress(mesh, part, normals, v) {
-        Err(e) if e.kind == ErrorKind::Limit => {
-            errors.insert(v, e);
-            Ok(false)
-        }
-        result => result.map(|()| true),
-    })?;
+    for fill in [false, true] {
+        stuck = until_stable(stuck, |&v| match suppress(mesh, part, normals, v, fill) {
+            Err(e) if e.kind == ErrorKind::Limit => {
+                errors.entry(v).or_insert(e);
+                Ok(false)
+            }
+            result => result.map(|()| true),
+        })?;
+    }
     if let Some(e) = stuck.first().and_then(|v| errors.remove(v)) {
         return Err(e);
     }
@@ -141,19 +149,36 @@ fn patch(mesh: &TetMesh, part: &Partition, face: usize, p: u32) -> Result<Patch>
 }
 
 /// Moves point `p` off the surface; where no move makes every new tetrahedron positive,
-/// merges it on the surface into a neighbour ([`collapse_on_surface`]).
-fn suppress(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32) -> Result<()> {
+/// merges it on the surface into a neighbour ([`collapse_on_surface`]); with `fill`, where
+/// that fails too, moves it off again, filling without it the pieces of its star no move
+/// fits ([`fill_piece`]).
+fn suppress(
+    mesh: &mut TetMesh,
+    part: &mut Partition,
+    normals: &[Point],
+    p: u32,
+    fill: bool,
+) -> Result<()> {
     let added = mesh.points.len();
-    match move_off(mesh, part, normals, p) {
+    let restore = |mesh: &mut TetMesh| {
+        while mesh.points.len() > added {
+            mesh.pop_point();
+        }
+    };
+    match move_off(mesh, part, normals, p, false) {
         Err(e) if e.kind == ErrorKind::Limit => {
-            while mesh.points.len() > added {
-                mesh.pop_point();
-            }
+            restore(mesh);
             if collapse_on_surface(mesh, part, p)? {
-                Ok(())
-            } else {
-                Err(e)
+                return Ok(());
             }
+            if !fill {
+                return Err(e);
+            }
+            let result = move_off(mesh, part, normals, p, true);
+            if result.is_err() {
+                restore(mesh);
+            }
+            result
         }
         result => result,
     }
@@ -228,8 +253,15 @@ fn merge_into(mesh: &mut TetMesh, ball: &[u32], p: u32, o: u32) -> Result<bool> 
     Ok(true)
 }
 
-/// Moves point `p` off the surface: one copy into each piece of its star.
-fn move_off(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32) -> Result<()> {
+/// Moves point `p` off the surface: one copy into each piece of its star; with `fill`, a
+/// piece no copy fits is filled without one where [`fill_piece`] can.
+fn move_off(
+    mesh: &mut TetMesh,
+    part: &mut Partition,
+    normals: &[Point],
+    p: u32,
+    fill: bool,
+) -> Result<()> {
     let faces = part.faces_of(p);
     let patches: Vec<Patch> = faces
         .iter()
@@ -251,6 +283,8 @@ fn move_off(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32)
         .map(|v| dist(&origin, mesh.point(v)))
         .fold(f64::INFINITY, f64::min);
     let mut all = Vec::new();
+    // Tetrahedra around the star that a filled piece replaces too.
+    let mut around: Vec<u32> = Vec::new();
     for piece in pieces {
         let sides = bounding_sides(mesh, &piece, p, &separators);
         let mut normal = [0.0; 3];
@@ -281,20 +315,127 @@ fn move_off(mesh: &mut TetMesh, part: &mut Partition, normals: &[Point], p: u32)
                 tets.iter().all(|&t| mesh.positive(t))
             })
         });
-        if !placed {
+        if placed {
+            all.extend(tets);
+            continue;
+        }
+        if !fill {
             return Err(failure(format!(
                 "point {p} added on the surface near {origin:?} could not be moved off it"
             )));
         }
-        all.extend(tets);
+        // No place for the copy: the piece, or the piece and a few layers around it, is
+        // filled without it where its boundary allows.
+        let cone: Vec<[u32; 3]> = tets.iter().map(|t| without(*t, q)).collect();
+        mesh.pop_point();
+        let taken: Vec<u32> = ball.iter().chain(&around).copied().collect();
+        let surface: Vec<Key> = sides
+            .iter()
+            .flat_map(|&(j, _)| patches[j].new.iter().map(|&f| key(f)))
+            .collect();
+        let Some((filled, grown)) = fill_piece(mesh, &part.protected, &surface, &taken, &cone)
+        else {
+            return Err(failure(format!(
+                "point {p} added on the surface near {origin:?} could not be moved off it"
+            )));
+        };
+        all.extend(filled);
+        around.extend(grown);
     }
-    mesh.replace(&ball, &all)?;
+    let replaced: Vec<u32> = ball.iter().chain(&around).copied().collect();
+    mesh.replace(&replaced, &all)?;
     mesh.forget(p);
     for patch in &patches {
         part.retriangulate(patch.face, &patch.old, &patch.new);
     }
     part.host.remove(&p);
     Ok(())
+}
+
+/// The tetrahedra filling a piece of a star without its point: `cone` is the piece's
+/// boundary (the bases of the cone from the point's copy). It is grown by up to
+/// [`REFILL_LAYERS`] layers of tetrahedra across facets neither protected nor in `surface`
+/// (the piece's new subfaces), none of `taken` (the star and what other pieces took), until
+/// [`fill_boundary`] fills it and every vertex inside is on its boundary. Returns the
+/// filling and the tetrahedra the growth took.
+fn fill_piece(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    surface: &[Key],
+    taken: &[u32],
+    cone: &[[u32; 3]],
+) -> Option<(Vec<[u32; 4]>, Vec<u32>)> {
+    let mut grown: Vec<u32> = Vec::new();
+    for layer in 0..=REFILL_LAYERS {
+        let boundary = boundary_of(mesh, cone, &grown);
+        let mut on_boundary: Vec<u32> = boundary.iter().flatten().copied().collect();
+        on_boundary.sort_unstable();
+        let all_on = grown
+            .iter()
+            .flat_map(|&t| mesh.tets.vertices(t))
+            .all(|v| on_boundary.binary_search(&v).is_ok());
+        if all_on {
+            if let Some(filled) = fill_boundary(mesh, &boundary) {
+                return Some((filled, grown));
+            }
+        }
+        if layer == REFILL_LAYERS {
+            break;
+        }
+        let before = grown.len();
+        for &f in &boundary {
+            if protected.facet(f) || surface.contains(&key(f)) {
+                continue;
+            }
+            let Some((t, i)) = mesh.find_face(f) else {
+                continue;
+            };
+            for u in [t, mesh.tets.neighbor(t, i)] {
+                if !taken.contains(&u) && !grown.contains(&u) {
+                    grown.push(u);
+                }
+            }
+        }
+        if grown.len() == before {
+            break;
+        }
+    }
+    None
+}
+
+/// The faces that occur an odd number of times among `cone` and the facets of `grown` (a
+/// face of the cone twice bounds a flat part, which vanishes).
+fn boundary_of(mesh: &TetMesh, cone: &[[u32; 3]], grown: &[u32]) -> Vec<[u32; 3]> {
+    let mut count: HashMap<Key, ([u32; 3], usize)> = HashMap::default();
+    let faces = cone.iter().copied().chain(
+        grown
+            .iter()
+            .flat_map(|&t| (0..4).map(move |i| mesh.facet(t, i))),
+    );
+    for f in faces {
+        count.entry(key(f)).or_insert((f, 0)).1 += 1;
+    }
+    let mut once: Vec<[u32; 3]> = count
+        .into_values()
+        .filter(|&(_, n)| n % 2 == 1)
+        .map(|(f, _)| f)
+        .collect();
+    once.sort_unstable();
+    once
+}
+
+/// The three vertices of `t` other than its vertex `q`.
+fn without(t: [u32; 4], q: u32) -> [u32; 3] {
+    let i = t.iter().position(|&v| v == q).unwrap_or(3);
+    let mut f = [0; 3];
+    let mut k = 0;
+    for (j, &v) in t.iter().enumerate() {
+        if j != i {
+            f[k] = v;
+            k += 1;
+        }
+    }
+    f
 }
 
 /// `u` scaled to length 1, if it has a length.
@@ -596,9 +737,6 @@ fn refill(mesh: &mut TetMesh, protected: &Protected, s: u32, layers: usize) -> R
         region.sort_unstable();
         region.dedup();
     }
-    // The boundary's vertices, numbered from 0 in order of appearance.
-    let mut ids: Vec<u32> = Vec::new();
-    let mut number: HashMap<u32, u32> = HashMap::default();
     let mut boundary: Vec<[u32; 3]> = Vec::new();
     for &t in &region {
         for i in 0..4 {
@@ -609,31 +747,67 @@ fn refill(mesh: &mut TetMesh, protected: &Protected, s: u32, layers: usize) -> R
                 }
                 continue;
             }
-            boundary.push(f.map(|v| {
-                *number.entry(v).or_insert_with(|| {
-                    ids.push(v);
-                    ids.len() as u32 - 1
-                })
-            }));
+            boundary.push(f);
         }
     }
+    let mut on_boundary: Vec<u32> = boundary.iter().flatten().copied().collect();
+    on_boundary.sort_unstable();
     let kept = region
         .iter()
         .flat_map(|&t| mesh.tets.vertices(t))
-        .all(|v| v == s || number.contains_key(&v));
-    if !kept || number.contains_key(&crate::triangulation::tets::INFINITE) {
+        .all(|v| v == s || on_boundary.binary_search(&v).is_ok());
+    if !kept {
         return Ok(false);
     }
-    let points: Vec<Point> = ids.iter().map(|&v| *mesh.point(v)).collect();
-    let Some(filled) = super::fill_without_points(&points, &boundary) else {
+    let Some(new) = fill_boundary(mesh, &boundary) else {
         return Ok(false);
     };
-    let new: Vec<[u32; 4]> = filled.iter().map(|q| q.map(|v| ids[v as usize])).collect();
-    if !new.iter().all(|&q| mesh.positive(q)) || mesh.try_replace(&region, &new)?.is_none() {
+    if mesh.try_replace(&region, &new)?.is_none() {
         return Ok(false);
     }
     mesh.forget(s);
     Ok(true)
+}
+
+/// The tetrahedra filling the closed surface `boundary` (facets of `mesh`) with no added
+/// point ([`super::fill_without_points`]), every one positive; `None` if there are none.
+fn fill_boundary(mesh: &TetMesh, boundary: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
+    // The boundary's vertices, numbered from 0 in order of appearance.
+    let mut ids: Vec<u32> = Vec::new();
+    let mut number: HashMap<u32, u32> = HashMap::default();
+    let local: Vec<[u32; 3]> = boundary
+        .iter()
+        .map(|f| {
+            f.map(|v| {
+                *number.entry(v).or_insert_with(|| {
+                    ids.push(v);
+                    ids.len() as u32 - 1
+                })
+            })
+        })
+        .collect();
+    if number.contains_key(&crate::triangulation::tets::INFINITE) {
+        return None;
+    }
+    let points: Vec<Point> = ids.iter().map(|&v| *mesh.point(v)).collect();
+    let filled = super::fill_without_points(&points, &local)?;
+    let new: Vec<[u32; 4]> = filled.iter().map(|q| q.map(|v| ids[v as usize])).collect();
+    // The filling's boundary is `boundary`, and its tetrahedra are positive.
+    let mut faces: HashMap<Key, usize> = HashMap::default();
+    for q in &new {
+        for f in FACE {
+            *faces.entry(key(f.map(|k| q[k]))).or_insert(0) += 1;
+        }
+    }
+    let mut outline: Vec<Key> = faces
+        .into_iter()
+        .filter(|&(_, n)| n == 1)
+        .map(|(f, _)| f)
+        .collect();
+    outline.sort_unstable();
+    let mut expected: Vec<Key> = boundary.iter().map(|&f| key(f)).collect();
+    expected.sort_unstable();
+    (outline == expected && new.iter().all(|&q| mesh.positive(q))).then_some(new)
 }
 
 /// Collapses `s` onto the nearest vertex of its star that allows it; `false` if none does or
