@@ -5,7 +5,9 @@
 //! takes the crossing away: the segment then leaves the star of `a` one tetrahedron further.
 //! A crossed edge is coplanar with the segment; its ring is triangulated without any
 //! diagonal across that plane, which generalizes the fan from `a` and, when `b` is in the
-//! ring, is the 2-2 flip in the plane that coplanar input (grids, planar CAD faces) needs.
+//! ring, is the 2-2 flip in the plane that coplanar input (grids, planar CAD faces) needs;
+//! where the ring cannot be so triangulated, the shell may first be shrunk (2-3 flips of its
+//! facets, a few levels deep, none across the plane), when the caller asks for it.
 //! The same is tried from `b`. When neither end can advance, the edges of the first crossed
 //! facets are removed (any valid ring triangulation, shrinking rings some levels deep as
 //! TetGen's `flipnm` does; a facet's edges where its 2-3 flip fails first, as TetGen's
@@ -33,6 +35,11 @@ const BUDGET: usize = 256;
 /// The deepest level at which the main recovery tries again the edges still missing, before
 /// it adds points (TetGen raises its flip level the same way, while missing segments remain).
 pub const DEEPEST: u32 = 5;
+
+/// How deep, and with how many edge removals, [`advance`] shrinks the shell of an edge the
+/// segment crosses in its plane, when asked to.
+const SHRINK_DEPTH: u32 = 2;
+const SHRINK_BUDGET: usize = 64;
 
 /// What the segment from a vertex meets first, leaving that vertex's star.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -86,28 +93,40 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
 /// Unblocking ([`unblock`]) removes edges `depth` levels deep, and stops when it meets the
 /// first crossings from both ends it met before (its flips went round in a circle). When
 /// `guarded`, no unblocking flip may create a facet whose interior the segment crosses
-/// (TetGen's `checkflipeligibility` with a segment).
+/// (TetGen's `checkflipeligibility` with a segment). With `shrink`, an edge crossed in the
+/// segment's plane whose ring cannot be triangulated at once has its shell shrunk first
+/// ([`SHRINK_DEPTH`]).
 pub fn recover_edge(
     mesh: &mut TetMesh,
     protected: &Protected,
     [a, b]: [u32; 2],
     depth: u32,
     guarded: bool,
+    shrink: bool,
 ) -> Result<bool> {
     let clear = Clear([a, b]);
     let rule: &dyn Rule = if guarded { &clear } else { &Any };
     let mut seen = rustc_hash::FxHashSet::default();
     'flips: for _ in 0..MAX_FLIPS {
-        // A failed advance changes nothing: its crossings still hold after both failed.
+        // A failed advance changes nothing unless it shrinks: its crossings still hold after
+        // both failed, and are looked up again otherwise.
         let mut crossings = [Crossing::Vertex(a); 2];
         for (k, [s, e]) in [[a, b], [b, a]].into_iter().enumerate() {
             let Some(c) = crossing_off_vertices(mesh, s, e)? else {
                 return Ok(true);
             };
-            if advance(mesh, protected, [s, e], c)? {
+            if advance(mesh, protected, [s, e], c, shrink)? {
                 continue 'flips;
             }
             crossings[k] = c;
+        }
+        if shrink {
+            for (k, [s, e]) in [[a, b], [b, a]].into_iter().enumerate() {
+                let Some(c) = crossing_off_vertices(mesh, s, e)? else {
+                    return Ok(true);
+                };
+                crossings[k] = c;
+            }
         }
         if !seen.insert(crossings.map(|c| crossed(mesh, c))) {
             // The unblocking flips went round in a circle.
@@ -163,18 +182,29 @@ pub fn vertex_on_edge(mesh: &TetMesh, v: u32, e: [u32; 2]) -> Error {
 /// crossed facet, or the removal of the crossed edge. The segment meets that edge, so the
 /// four points are coplanar: any ring triangulation without a diagonal across their plane
 /// leaves the segment one tetrahedron further into the star of `start` (and recovers it, by
-/// a 2-2 flip in that plane, when `end` is in the ring).
+/// a 2-2 flip in that plane, when `end` is in the ring). With `shrink`, where the ring has no
+/// such triangulation, the edge is removed after shrinking its shell; flips made on the way
+/// stay when that fails.
 fn advance(
     mesh: &mut TetMesh,
     protected: &Protected,
     [start, end]: [u32; 2],
     c: Crossing,
+    shrink: bool,
 ) -> Result<bool> {
     match c {
         Crossing::Facet(t, i) => flip23(mesh, protected, t, i, &Any),
         Crossing::Edge([x, y], _) => {
             debug_assert_eq!(mesh.orient([x, y, start, end]), Sign::Zero);
-            remove_edge(mesh, protected, [x, y], &not_across(x, y, start))
+            let rule = not_across(x, y, start);
+            if remove_edge(mesh, protected, [x, y], &rule)? {
+                return Ok(true);
+            }
+            if !shrink {
+                return Ok(false);
+            }
+            let mut budget = SHRINK_BUDGET;
+            remove_edge_deep(mesh, protected, [x, y], &rule, SHRINK_DEPTH, &mut budget)
         }
         Crossing::Vertex(_) => Ok(false),
     }

@@ -14,7 +14,8 @@
 //! 3. Missing edges, then missing triangles, are recovered (§5.2); with `keep_convex_hull`,
 //!    the convex hull's triangles ([`hull`]) too, and points added on those alone stay there.
 //!    Where that fails (a `Limit` error), the whole is tried again with, for each sub-edge
-//!    flips leave missing, a point inside the volume first ([`interior`]).
+//!    flips leave missing, a point inside the volume first ([`interior`]), then once more
+//!    with shells of edges crossed in a segment's plane shrunk first ([`ATTEMPTS`]).
 //! 4. Points added on the surface are moved off it, then merged away, or removed where their
 //!    star, or their star and a few layers around it, can be filled again without them by
 //!    this same recovery with no point allowed (§5.3, [`suppress`]).
@@ -109,21 +110,58 @@ pub fn tetrahedralize_surface(
         triangles: tris,
         done: false,
     };
-    // Points on the surface alone first; where they cannot do it, points inside the volume
-    // where those recover a sub-edge ([`interior`]), before any on the surface. The first
-    // attempt's error is the one reported when both fail.
-    let attempt = match mesh_surface(points, tris, options, &mut intersections, false) {
-        Err(e) if e.kind == ErrorKind::Limit => {
-            mesh_surface(points, tris, options, &mut intersections, true).map_err(|_| e)
+    // The attempts in order, until one meshes; the first one's error is the one reported
+    // when all fail.
+    let mut first: Option<Error> = None;
+    let mut meshed = None;
+    for attempt in ATTEMPTS {
+        match mesh_surface(points, tris, options, &mut intersections, attempt) {
+            Err(e) if e.kind == ErrorKind::Limit => {
+                first.get_or_insert(e);
+            }
+            other => {
+                meshed = Some(other);
+                break;
+            }
         }
-        other => other,
-    };
+    }
+    let attempt =
+        meshed.unwrap_or_else(|| Err(first.unwrap_or_else(|| Error::internal("no attempt"))));
     match attempt {
         Ok(mesh) => Ok(mesh),
         // A self-intersection is the first cause to report.
         Err(e) => intersections.run().and(Err(e)),
     }
 }
+
+/// How an attempt recovers what flips leave missing.
+#[derive(Clone, Copy, Debug)]
+struct Attempt {
+    /// A point inside the volume first for each sub-edge flips leave missing ([`interior`]),
+    /// before any on the surface.
+    interior: bool,
+    /// An edge crossed in its plane is removed after its shell is shrunk where it cannot be
+    /// at once ([`edges::recover_edge`]).
+    shrink: bool,
+}
+
+/// Points on the surface alone first; where they cannot do it, points inside the volume
+/// first; then also coplanar crossings taken away after shrinking their shells (Chazelle's
+/// polyhedron with three notches a side meshes so, and with two only without it).
+const ATTEMPTS: [Attempt; 3] = [
+    Attempt {
+        interior: false,
+        shrink: false,
+    },
+    Attempt {
+        interior: true,
+        shrink: false,
+    },
+    Attempt {
+        interior: true,
+        shrink: true,
+    },
+];
 
 /// The self-intersection check of the input, run at most once: when recovery is about to add
 /// its first point on the surface, or when meshing fails. Until then the mesh is a
@@ -171,7 +209,7 @@ fn mesh_surface(
     tris: &[[u32; 3]],
     options: &SurfaceOptions,
     intersections: &mut IntersectionCheck,
-    interior: bool,
+    attempt: Attempt,
 ) -> Result<Mesh> {
     check_options(options)?;
     let isolated = validate::isolated_vertices(points, tris);
@@ -185,9 +223,9 @@ fn mesh_surface(
     }
     let mut mesh = enclosed_delaunay(points, &bounding, &isolated)?;
     let mut part = Partition::new(&bounding);
-    // The second attempt follows a failure: a quarter as many points as triangles (anchor
-    // meshes well within it), so that an input it cannot mesh either fails in seconds.
-    let budget = if interior {
+    // The later attempts follow a failure: a quarter as many points as triangles (anchor
+    // meshes well within it), so that an input they cannot mesh either fails in seconds.
+    let budget = if attempt.interior {
         bounding.len() / 4 + 64
     } else {
         16 * bounding.len() + 1024
@@ -197,7 +235,7 @@ fn mesh_surface(
         &mut part,
         budget,
         edges::DEEPEST,
-        interior,
+        attempt,
         &mut |absent| intersections.run_on(Some(absent)),
     )?;
     let normals: Vec<Point> = bounding.iter().map(|f| unit_normal(points, *f)).collect();
@@ -246,8 +284,9 @@ fn mesh_surface(
 /// with the new, smaller pieces. At most `budget` points are added. Sub-edges the flips
 /// leave missing are tried again with edge removals one level deeper each time, down to
 /// `deepest` ([`edges::DEPTH`] for none), then with guarded unblocking at that level
-/// ([`edges::recover_edge`]), and, when `interior`, by a point inside the volume
-/// ([`interior::recover_edge`]), before points are added for them. Before the
+/// ([`edges::recover_edge`], shrinking crossed shells with `attempt.shrink`), and, with
+/// `attempt.interior`, by a point inside the volume ([`interior::recover_edge`]), before
+/// points are added for them. Before the
 /// first point, `before_points` is told the triangles (numbers in `part`) that may not be
 /// facets of the mesh, and may stop the recovery.
 fn recover(
@@ -255,7 +294,7 @@ fn recover(
     part: &mut Partition,
     mut budget: usize,
     deepest: u32,
-    interior: bool,
+    attempt: Attempt,
     before_points: &mut dyn FnMut(&[usize]) -> Result<()>,
 ) -> Result<()> {
     let mut first_point = true;
@@ -284,14 +323,15 @@ fn recover(
                 break;
             }
             stuck = until_stable(stuck, |&e| {
-                let done = edges::recover_edge(mesh, &part.protected, e, depth, guarded)?;
+                let done =
+                    edges::recover_edge(mesh, &part.protected, e, depth, guarded, attempt.shrink)?;
                 if done {
                     edges_done.insert(e);
                 }
                 Ok(done)
             })?;
         }
-        if interior && !stuck.is_empty() {
+        if attempt.interior && !stuck.is_empty() {
             // A point inside the volume, where one recovers the sub-edge, before any on it.
             let before = stuck.len();
             stuck = until_stable(stuck, |&e| {
@@ -355,7 +395,7 @@ fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[
         &mut part,
         0,
         edges::DEPTH,
-        false,
+        ATTEMPTS[0],
         &mut |_| Ok(()),
     )
     .ok()?;
