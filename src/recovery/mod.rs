@@ -110,23 +110,18 @@ pub fn tetrahedralize_surface(
         triangles: tris,
         done: false,
     };
-    // The attempts in order, until one meshes; the first one's error is the one reported
-    // when all fail.
-    let mut first: Option<Error> = None;
-    let mut meshed = None;
-    for attempt in ATTEMPTS {
-        match mesh_surface(points, tris, options, &mut intersections, attempt) {
-            Err(e) if e.kind == ErrorKind::Limit => {
-                first.get_or_insert(e);
-            }
-            other => {
-                meshed = Some(other);
-                break;
-            }
+    // The attempts in order, while they stop at a limit; the first one's error is the one
+    // reported when all do.
+    let mut attempt = mesh_surface(points, tris, options, &mut intersections, ATTEMPTS[0]);
+    for &next in &ATTEMPTS[1..] {
+        if !matches!(&attempt, Err(e) if e.kind == ErrorKind::Limit) {
+            break;
+        }
+        match mesh_surface(points, tris, options, &mut intersections, next) {
+            Err(e) if e.kind == ErrorKind::Limit => {}
+            other => attempt = other,
         }
     }
-    let attempt =
-        meshed.unwrap_or_else(|| Err(first.unwrap_or_else(|| Error::internal("no attempt"))));
     match attempt {
         Ok(mesh) => Ok(mesh),
         // A self-intersection is the first cause to report.
