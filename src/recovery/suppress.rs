@@ -285,6 +285,7 @@ fn move_off(
     let mut all = Vec::new();
     // Tetrahedra around the star that a filled piece replaces too.
     let mut around: Vec<u32> = Vec::new();
+    let mut filled_any = false;
     for piece in pieces {
         let sides = bounding_sides(mesh, &piece, p, &separators);
         let mut normal = [0.0; 3];
@@ -341,9 +342,21 @@ fn move_off(
         };
         all.extend(filled);
         around.extend(grown);
+        filled_any = true;
     }
     let replaced: Vec<u32> = ball.iter().chain(&around).copied().collect();
-    mesh.replace(&replaced, &all)?;
+    if filled_any {
+        // Each filling matches its own region, but a flat part one piece dropped may be
+        // what another piece's cone, or the mesh outside, still holds.
+        if mesh.try_replace(&replaced, &all)?.is_none() {
+            return Err(failure(format!(
+                "point {p} added on the surface near {origin:?} could not be moved off it: \
+                 the fillings of its star's pieces do not fit together"
+            )));
+        }
+    } else {
+        mesh.replace(&replaced, &all)?;
+    }
     mesh.forget(p);
     for patch in &patches {
         part.retriangulate(patch.face, &patch.old, &patch.new);
