@@ -6,9 +6,9 @@
 //!    where an edge of the facet has a shell of three), never across an input triangle;
 //!    skipped when recovery changed nothing in the Delaunay triangulation.
 //! 2. A tetrahedron whose radius-edge ratio (circumradius over shortest edge) or volume is
-//!    above its bound gets its circumcenter, the worst first ([`BadQueue`]), inserted by a Bowyer–Watson cavity that stops at
-//!    the input triangles and is shrunk until it is star-shaped from the point; Lawson's flips
-//!    follow when it was shrunk.
+//!    above its bound gets its circumcenter, the worst first ([`BadQueue`]), inserted by a
+//!    Bowyer–Watson cavity that stops at the input triangles and is shrunk until it is
+//!    star-shaped from the point; Lawson's flips follow when it was shrunk.
 //! 3. A circumcenter is declined when it lies beyond the surface seen from its tetrahedron,
 //!    when it would be joined by an edge shorter than its tetrahedron's shortest edge (only
 //!    where the mesh is not Delaunay: a guard against cascades),

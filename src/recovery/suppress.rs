@@ -667,9 +667,10 @@ fn left(mesh: &TetMesh, first: u32) -> Vec<u32> {
 /// radius-edge ratio is smallest (George and Borouchaki's relocation; the halving that took
 /// it off the surface leaves it needlessly close): the candidates lie on the segments from the
 /// point to the centroid of its link and to the centroid of each link triangle, and, for a
-/// nearly flat star, to the point of its kernel farthest from the link's planes that an
-/// ascent finds ([`deepest_in_kernel`]); a move is kept only when every tetrahedron of the star stays positive (exact) and the worst ratio
-/// improves. The mesh's topology does not change.
+/// nearly flat star ([`FLAT_STAR`]), to the point of its kernel farthest from the link's
+/// planes that an ascent finds ([`deepest_in_kernel`]); a move is kept only when every
+/// tetrahedron of the star stays positive (exact) and the worst ratio improves. The mesh's
+/// topology does not change.
 pub fn relocate_interior(mesh: &mut TetMesh, part: &Partition, first: u32) {
     for _ in 0..RELOCATION_PASSES {
         for s in first..mesh.points.len() as u32 {
