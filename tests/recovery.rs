@@ -542,7 +542,7 @@ fn an_interior_point_recovers_edges_through_a_shell() {
 /// edges) does not get worse.
 #[test]
 fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
-    use delmesh::recovery::flips::{improve_by_32_flips, Protected};
+    use delmesh::recovery::flips::{improve_by_32_flips, Bound, Protected};
     use delmesh::recovery::tetmesh::{key, TetMesh};
     let finite = |mesh: &TetMesh| -> Vec<[[f64; 3]; 4]> {
         mesh.tets
@@ -581,8 +581,11 @@ fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
     }
     let before = finite(&mesh);
     let all = mesh.tets.live().collect();
-    let flips =
-        improve_by_32_flips(&mut mesh, &protected, f64::INFINITY, all, &mut |_, _| {}).unwrap();
+    let bound = Bound {
+        ratio: f64::INFINITY,
+        on_surface: None,
+    };
+    let flips = improve_by_32_flips(&mut mesh, &protected, bound, all, &mut |_, _| {}).unwrap();
     mesh.validate().unwrap();
     let after = finite(&mesh);
     assert!(flips > 0);
@@ -593,6 +596,59 @@ fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
     for f in &protected.facets {
         assert!(mesh.find_face(*f).is_some(), "protected facet {f:?} lost");
     }
+}
+
+/// With a radius-edge bound, a new tetrahedron is above it only where it has three or four of
+/// the vertices the bound calls surface vertices (here the first 100 of 200 random points),
+/// and then no worse than the worst tetrahedron its flip replaced; with no surface vertices,
+/// none is above it.
+#[test]
+fn improving_32_flips_leave_tetrahedra_above_the_bound_only_on_the_surface() {
+    use delmesh::quality::radius_edge;
+    use delmesh::recovery::flips::{improve_by_32_flips, Bound, Protected};
+    use delmesh::recovery::tetmesh::TetMesh;
+    let live = |mesh: &TetMesh| -> std::collections::HashSet<[u32; 4]> {
+        mesh.tets
+            .live()
+            .map(|t| mesh.tets.vertices(t))
+            .filter(|v| !v.contains(&u32::MAX))
+            .map(|mut v| {
+                v.sort_unstable();
+                v
+            })
+            .collect()
+    };
+    let mut next = uniform(0x3_2f12);
+    let points: Vec<[f64; 3]> = (0..200).map(|_| [next(), next(), next()]).collect();
+    let used: Vec<u32> = (0..200).collect();
+    let ratio = |mesh: &TetMesh, q: [u32; 4]| radius_edge(q.map(|v| *mesh.point(v)));
+    let mut counts = Vec::new();
+    let first_half: Vec<bool> = (0..200).map(|v| v < 100).collect();
+    for on_surface in [None, Some(&first_half[..])] {
+        let mut mesh = TetMesh::delaunay(points.clone(), &used).unwrap();
+        let before = live(&mesh);
+        let worst_before = before.iter().map(|&q| ratio(&mesh, q)).fold(0.0, f64::max);
+        let bound = Bound {
+            ratio: 1.0,
+            on_surface,
+        };
+        let all = mesh.tets.live().collect();
+        let protected = Protected::default();
+        let flips = improve_by_32_flips(&mut mesh, &protected, bound, all, &mut |_, _| {}).unwrap();
+        mesh.validate().unwrap();
+        for &q in live(&mesh).difference(&before) {
+            let r = ratio(&mesh, q);
+            let surface = q.iter().filter(|&&v| v < 100).count() >= 3;
+            assert!(
+                r <= 1.0 || on_surface.is_some() && surface && r <= worst_before,
+                "{q:?} with ratio {r} ({:?})",
+                on_surface.is_some()
+            );
+        }
+        counts.push(flips);
+    }
+    // The surface's allowance lets more flips through.
+    assert!(counts[1] > counts[0], "{counts:?}");
 }
 
 #[test]

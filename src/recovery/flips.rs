@@ -4,7 +4,8 @@
 //! tetrahedra over a triangulation of its ring, chosen by dynamic programming; `n = 3` is the
 //! 3-2 flip and `n = 4` the 4-4 flip).
 //!
-//! [`improve_by_32_flips`] applies 3-2 flips that raise the worst shape, after refinement.
+//! [`improve_by_32_flips`] applies 3-2 flips that raise the worst shape, after refinement,
+//! within a radius-edge [`Bound`].
 //!
 //! A flip never destroys a protected edge or facet ([`Protected`]: the input surface) and is
 //! applied only when every new tetrahedron is positively oriented (exact).
@@ -288,17 +289,28 @@ const IMPROVED_BELOW: f64 = 0.004;
 /// Passes of [`improve_by_32_flips`] over the tetrahedra the previous pass made.
 const IMPROVING_PASSES: usize = 8;
 
+/// What the new tetrahedra of [`improve_by_32_flips`] must meet.
+#[derive(Clone, Copy, Debug)]
+pub struct Bound<'a> {
+    /// No new tetrahedron has a radius-edge ratio above this one...
+    pub ratio: f64,
+    /// ...but, with `Some(on)`, one with three or four vertices `v` on the surface
+    /// (`on[v]`; vertices past its end are not), no worse than the worst of the three it
+    /// replaces. Refinement leaves such tetrahedra above the bound where the surface forces
+    /// them.
+    pub on_surface: Option<&'a [bool]>,
+}
+
 /// 3-2 flips that raise the worst shape of the tetrahedra they replace (TetGen's mesh
 /// optimization by edge removal, on shells of three): one fewer tetrahedron each. The
 /// tetrahedra of `queue` shaped worse than [`IMPROVED_BELOW`] are looked at, then those each
-/// pass makes.
-/// No new tetrahedron has a radius-edge ratio above `bound`. `made(old, new)` is told each flip:
+/// pass makes. The new tetrahedra meet `bound`. `made(old, new)` is told each flip:
 /// one of the replaced tetrahedra (no protected facet separates them) and the two new ones.
 /// Returns how many flips were made.
 pub fn improve_by_32_flips(
     mesh: &mut TetMesh,
     protected: &Protected,
-    bound: f64,
+    bound: Bound,
     mut queue: Vec<u32>,
     made: &mut dyn FnMut(u32, &[u32]),
 ) -> Result<usize> {
@@ -326,12 +338,12 @@ pub fn improve_by_32_flips(
     Ok(flips)
 }
 
-/// The first 3-2 flip of an edge of `t` that raises the worst shape and makes no
-/// tetrahedron above the radius-edge `bound`, made; the new tetrahedra's ids.
+/// The first 3-2 flip of an edge of `t` that raises the worst shape and whose new
+/// tetrahedra meet `bound`, made; the new tetrahedra's ids.
 fn improving_32_flip(
     mesh: &mut TetMesh,
     protected: &Protected,
-    bound: f64,
+    bound: Bound,
     t: u32,
 ) -> Result<Option<Vec<u32>>> {
     let v = mesh.tets.vertices(t);
@@ -339,9 +351,22 @@ fn improving_32_flip(
         let worst = |tets: &mut dyn Iterator<Item = [u32; 4]>| {
             tets.map(|q| shape(mesh, q)).fold(f64::INFINITY, f64::min)
         };
-        let within = |q: [u32; 4]| radius_edge(q.map(|v| *mesh.point(v))) <= bound;
-        worst(&mut new.into_iter()) > worst(&mut shell.iter().map(|&s| mesh.tets.vertices(s)))
-            && new.iter().all(|&q| within(q))
+        let old = shell.map(|s| mesh.tets.vertices(s));
+        if worst(&mut new.into_iter()) <= worst(&mut old.into_iter()) {
+            return false;
+        }
+        let ratio = |q: [u32; 4]| radius_edge(q.map(|v| *mesh.point(v)));
+        let old_ratio = std::cell::OnceCell::new();
+        new.iter().all(|&q| {
+            let r = ratio(q);
+            r <= bound.ratio
+                || bound.on_surface.is_some_and(|on| {
+                    let on = |x: u32| on.get(x as usize).copied().unwrap_or(false);
+                    q.iter().filter(|&&x| on(x)).count() >= 3
+                        && r <= *old_ratio
+                            .get_or_init(|| old.map(ratio).into_iter().fold(0.0, f64::max))
+                })
+        })
     };
     for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
         if let Some(new) = flip32(mesh, protected, t, [v[i], v[j]], &improves)? {

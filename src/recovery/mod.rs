@@ -23,7 +23,8 @@
 //!    is dropped (§5.3, last remark).
 //! 6. Optional quality refinement with interior points only ([`refine`]: radius-edge and
 //!    volume bounds, TetGen's `-q`/`-a` with `-Y`), followed, with a radius-edge bound, by
-//!    3-2 flips that improve the worst shape ([`flips::improve_by_32_flips`]).
+//!    3-2 flips that improve the worst shape ([`flips::improve_by_32_flips`]; a new
+//!    tetrahedron stays above the bound only with three or four surface vertices).
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
@@ -262,7 +263,17 @@ fn mesh_surface(
     if options.max_radius_edge_ratio > 0.0 {
         // Fewer and better tetrahedra in the kept regions (TetGen optimizes its refined mesh
         // so).
-        let bound = options.max_radius_edge_ratio;
+        // Where a volume bound applies, two tetrahedra above the ratio bound may also be
+        // above it: none is allowed.
+        let volumes = regions.max_volume.iter().any(|&v| v > 0.0);
+        let mut on_surface = vec![false; points.len()];
+        for &v in bounding.iter().flatten() {
+            on_surface[v as usize] = true;
+        }
+        let bound = flips::Bound {
+            ratio: options.max_radius_edge_ratio,
+            on_surface: (!volumes).then_some(&on_surface),
+        };
         let kept = mesh.tets.live().filter(|&t| regions.kept(t)).collect();
         flips::improve_by_32_flips(&mut mesh, &part.protected, bound, kept, &mut |old, new| {
             let c = regions.component[old as usize];
