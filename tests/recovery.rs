@@ -600,8 +600,8 @@ fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
 
 /// With a radius-edge bound, a new tetrahedron is above it only where it has three or four of
 /// the vertices the bound calls surface vertices (here the first 100 of 200 random points),
-/// and then no worse than the worst tetrahedron its flip replaced; with no surface vertices,
-/// none is above it.
+/// and then no worse than the worst tetrahedron before the flips (the flip's rule, no worse
+/// than the three it replaces, implies it); with no surface vertices, none is above it.
 #[test]
 fn improving_32_flips_leave_tetrahedra_above_the_bound_only_on_the_surface() {
     use delmesh::quality::radius_edge;

@@ -197,12 +197,10 @@ fn advance(
         Crossing::Edge([x, y], _) => {
             debug_assert_eq!(mesh.orient([x, y, start, end]), Sign::Zero);
             let rule = not_across(x, y, start);
-            if remove_edge(mesh, protected, [x, y], &rule)? {
-                return Ok(true);
-            }
             if !shrink {
-                return Ok(false);
+                return remove_edge(mesh, protected, [x, y], &rule);
             }
+            // The plain removal first, then with the shell shrunk.
             let mut budget = SHRINK_BUDGET;
             remove_edge_deep(mesh, protected, [x, y], &rule, SHRINK_DEPTH, &mut budget)
         }

@@ -33,6 +33,16 @@ impl Protected {
         self.edges.contains(&[a.min(b), a.max(b)])
     }
 
+    /// Per vertex `0..vertices`, whether it is an end of a protected edge (lies on the
+    /// surface).
+    pub fn vertices_on_edges(&self, vertices: usize) -> Vec<bool> {
+        let mut on = vec![false; vertices];
+        for &v in self.edges.iter().flatten() {
+            on[v as usize] = true;
+        }
+        on
+    }
+
     pub fn facet(&self, f: [u32; 3]) -> bool {
         self.facets.contains(&key(f))
     }
@@ -356,16 +366,12 @@ fn improving_32_flip(
             return false;
         }
         let ratio = |q: [u32; 4]| radius_edge(q.map(|v| *mesh.point(v)));
-        let old_ratio = std::cell::OnceCell::new();
+        let on_surface = |x: u32| bound.on_surface.and_then(|on| on.get(x as usize)) == Some(&true);
         new.iter().all(|&q| {
             let r = ratio(q);
             r <= bound.ratio
-                || bound.on_surface.is_some_and(|on| {
-                    let on = |x: u32| on.get(x as usize).copied().unwrap_or(false);
-                    q.iter().filter(|&&x| on(x)).count() >= 3
-                        && r <= *old_ratio
-                            .get_or_init(|| old.map(ratio).into_iter().fold(0.0, f64::max))
-                })
+                || q.iter().filter(|&&x| on_surface(x)).count() >= 3
+                    && r <= old.map(ratio).into_iter().fold(0.0, f64::max)
         })
     };
     for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {

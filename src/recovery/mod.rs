@@ -266,10 +266,7 @@ fn mesh_surface(
         // Where a volume bound applies, two tetrahedra above the ratio bound may also be
         // above it: none is allowed.
         let volumes = regions.max_volume.iter().any(|&v| v > 0.0);
-        let mut on_surface = vec![false; points.len()];
-        for &v in bounding.iter().flatten() {
-            on_surface[v as usize] = true;
-        }
+        let on_surface = part.protected.vertices_on_edges(mesh.points.len());
         let bound = flips::Bound {
             ratio: options.max_radius_edge_ratio,
             on_surface: (!volumes).then_some(&on_surface),

@@ -58,8 +58,8 @@ impl BadQueue {
         }
     }
 
-    /// Queues a tetrahedron `excess` times above its bound (> 1; the last bucket holds
-    /// those beyond 2^16, and the infinitely bad).
+    /// Queues a tetrahedron `excess` times above its bound (> 1; the last bucket holds those
+    /// from 2^(255/16), about 6 × 10^4, and the infinitely bad).
     fn push(&mut self, excess: f64, item: (u32, [u32; 4], Split)) {
         let b = (excess.log2() * Self::PER_DOUBLING).clamp(0.0, (Self::BUCKETS - 1) as f64);
         let b = if b.is_nan() {
@@ -136,10 +136,7 @@ struct Surface<'a> {
 
 impl<'a> Surface<'a> {
     fn new(protected: &'a Protected, vertices: usize) -> Self {
-        let mut on = vec![false; vertices];
-        for &v in protected.edges.iter().flatten() {
-            on[v as usize] = true;
-        }
+        let on = protected.vertices_on_edges(vertices);
         Surface { protected, on }
     }
 

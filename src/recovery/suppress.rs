@@ -35,7 +35,7 @@ use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
 use super::until_stable;
 use crate::error::{Error, ErrorKind, Result};
-use crate::geometry::{add, dist, norm, sub};
+use crate::geometry::{add, cross, dist, dot, norm, sub};
 use crate::io::surface::triangulate_polygon_avoiding;
 use crate::predicates::Point;
 use crate::triangulation::tets::FACE;
@@ -744,15 +744,15 @@ fn deepest_in_kernel(mesh: &TetMesh, star: &[[u32; 4]], s: u32) -> Point {
         .filter_map(|q| {
             let i = q.iter().position(|&v| v == s)?;
             let [a, b, c] = FACE[i].map(|k| *mesh.point(q[k]));
-            let n = crate::geometry::cross(&sub(&b, &a), &sub(&c, &a));
             // FACE[i] is turned so that the vertex i of a positive tetrahedron is in front.
-            unit(&n).map(|n| (a, n))
+            unit(&cross(&sub(&b, &a), &sub(&c, &a))).map(|n| (a, n))
         })
         .collect();
+    let height = |x: &Point, (a, n): &(Point, Point)| dot(n, &sub(x, a));
     let nearest = |x: &Point| {
         planes
             .iter()
-            .map(|(a, n)| crate::geometry::dot(n, &sub(x, a)))
+            .map(|p| height(x, p))
             .fold(f64::INFINITY, f64::min)
     };
     let mut x = *mesh.point(s);
@@ -763,14 +763,17 @@ fn deepest_in_kernel(mesh: &TetMesh, star: &[[u32; 4]], s: u32) -> Point {
         .fold(f64::INFINITY, f64::min)
         / 4.0;
     for _ in 0..KERNEL_STEPS {
-        let near: Vec<&Point> = planes
+        // The normals of the nearly nearest planes: their sum, and the first of them.
+        let mut sum = [0.0; 3];
+        let mut first = None;
+        for p in planes
             .iter()
-            .filter(|(a, n)| crate::geometry::dot(n, &sub(&x, a)) <= depth + 0.25 * step)
-            .map(|(_, n)| n)
-            .collect();
-        let sum = near.iter().fold([0.0; 3], |acc, n| add(&acc, n));
-        let directions = [unit(&sum), near.first().map(|n| **n)];
-        let moved = directions.iter().flatten().find_map(|d| {
+            .filter(|p| height(&x, p) <= depth + 0.25 * step)
+        {
+            sum = add(&sum, &p.1);
+            first = first.or(Some(p.1));
+        }
+        let moved = [unit(&sum), first].into_iter().flatten().find_map(|d| {
             let y = add(&x, &[step * d[0], step * d[1], step * d[2]]);
             let deeper = nearest(&y);
             (deeper > depth).then_some((y, deeper))
