@@ -915,3 +915,98 @@ fn keeping_the_convex_hull_adds_a_region_between_the_surface_and_the_hull() {
         }
     }
 }
+
+/// Twice the signed area of `(a, b, c)` in the plane z = 0.
+fn area2(p: &[[f64; 3]], [a, b, c]: [u32; 3]) -> f64 {
+    let [a, b, c] = [a, b, c].map(|v| p[v as usize]);
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
+
+#[test]
+fn delaunay_flips_keep_a_tiling_partition_and_make_it_delaunay() {
+    use delmesh::predicates::{incircle, Sign};
+    use delmesh::recovery::partition::{sides, Partition};
+    // Integer points: every area below is exact.
+    let mut points = vec![[0.0, 0.0, 0.0], [64.0, 0.0, 0.0], [0.0, 64.0, 0.0]];
+    let mut part = Partition::new(&[[0, 1, 2]]);
+    let mut next = uniform(7);
+    let mut on_edge = 0;
+    for k in 0..100 {
+        let (x, y) = if k % 6 == 0 {
+            ((1.0 + (next() * 62.0).floor()), 0.0)
+        } else {
+            (
+                (1.0 + (next() * 62.0).floor()),
+                (1.0 + (next() * 62.0).floor()),
+            )
+        };
+        if x + y >= 64.0 || points.iter().any(|p| p[0] == x && p[1] == y) {
+            continue;
+        }
+        let s = points.len() as u32;
+        points.push([x, y, 0.0]);
+        let subfaces: Vec<[u32; 3]> = part.all_subfaces().into_iter().map(|(_, t)| t).collect();
+        // The subface holding the point strictly inside, or the chain piece of the edge y = 0.
+        let inside = subfaces.iter().find(|t| {
+            sides(**t)
+                .iter()
+                .all(|&[a, b]| area2(&points, [a, b, s]) != 0.0)
+                && {
+                    let [a, b, c] = **t;
+                    [[a, b, s], [b, c, s], [c, a, s]]
+                        .iter()
+                        .all(|&q| area2(&points, q) > 0.0)
+                }
+        });
+        let piece = part.subedges().into_iter().find(|&[a, b]| {
+            let (pa, pb) = (points[a as usize], points[b as usize]);
+            pa[1] == 0.0 && pb[1] == 0.0 && y == 0.0 && pa[0].min(pb[0]) < x && x < pa[0].max(pb[0])
+        });
+        match (inside, piece) {
+            (Some(&t), _) => part.split_face(0, t, s),
+            (None, Some([a, b])) => {
+                part.split_edge(a, b, s);
+                on_edge += 1;
+            }
+            (None, None) => {
+                points.pop();
+                continue;
+            }
+        }
+        part.delaunay_around(s, &points);
+    }
+    assert!(
+        on_edge > 3 && points.len() > 40,
+        "{on_edge} {}",
+        points.len()
+    );
+    let subfaces: Vec<[u32; 3]> = part.all_subfaces().into_iter().map(|(_, t)| t).collect();
+    // A tiling: positive pieces whose areas add up to the triangle's, every point in one.
+    assert!(subfaces.iter().all(|&t| area2(&points, t) > 0.0));
+    let total: f64 = subfaces.iter().map(|&t| area2(&points, t)).sum();
+    assert_eq!(total, 64.0 * 64.0);
+    for v in 0..points.len() as u32 {
+        assert!(subfaces.iter().any(|t| t.contains(&v)), "point {v} lost");
+    }
+    // The protected edges are the pieces' sides.
+    let mut edges: Vec<[u32; 2]> = subfaces.iter().flat_map(|&t| sides(t)).collect();
+    edges.sort_unstable();
+    edges.dedup();
+    assert_eq!(part.subedges(), edges);
+    // Delaunay: no piece's circumcircle holds the far vertex of its neighbour.
+    let flat = |v: u32| [points[v as usize][0], points[v as usize][1]];
+    for &t in &subfaces {
+        for &u in &subfaces {
+            let shared = t.iter().filter(|v| u.contains(v)).count();
+            if shared == 2 {
+                let far = u.into_iter().find(|v| !t.contains(v)).unwrap();
+                let [a, b, c] = t.map(flat);
+                assert_ne!(
+                    incircle(&a, &b, &c, &flat(far)),
+                    Sign::Positive,
+                    "{t:?} {u:?}"
+                );
+            }
+        }
+    }
+}

@@ -15,7 +15,9 @@
 //!    the convex hull's triangles ([`hull`]) too, and points added on those alone stay there.
 //!    Where that fails (a `Limit` error), the whole is tried again with, for each sub-edge
 //!    flips leave missing, a point inside the volume first ([`interior`]), then once more
-//!    with shells of edges crossed in a segment's plane shrunk first ([`ATTEMPTS`]).
+//!    with shells of edges crossed in a segment's plane shrunk first; last, with the
+//!    subfaces around every point added on the surface made Delaunay in their triangle
+//!    ([`ATTEMPTS`]).
 //! 4. Points added on the surface are moved off it, then merged away, or removed where their
 //!    star, or their star and a few layers around it, can be filled again without them by
 //!    this same recovery with no point allowed (§5.3, [`suppress`]).
@@ -139,23 +141,45 @@ struct Attempt {
     /// An edge crossed in its plane is removed after its shell is shrunk where it cannot be
     /// at once ([`edges::recover_edge`]).
     shrink: bool,
+    /// The subfaces around each point added on the surface are made Delaunay in their input
+    /// triangle ([`Partition::delaunay_around`]).
+    delaunay: bool,
 }
 
 /// Points on the surface alone first; where they cannot do it, points inside the volume
 /// first; then also coplanar crossings taken away after shrinking their shells (Chazelle's
-/// polyhedron with three notches a side meshes so, and with two only without it).
-const ATTEMPTS: [Attempt; 3] = [
+/// polyhedron with three notches a side meshes so, and with two only without it). Last,
+/// points on the surface again, then inside first, with Delaunay subfaces: where the
+/// surface is planar over several triangles, the split subfaces of the first attempts grow
+/// thin, and points added on them a rounding apart defeat recovery (Chazelle's polyhedron
+/// with four notches meshes so). Not first: on anchor, points on the surface with Delaunay
+/// subfaces run out of budget before points inside succeed, and the terrain keeps a point
+/// the first attempt does without.
+const ATTEMPTS: [Attempt; 5] = [
     Attempt {
         interior: false,
         shrink: false,
+        delaunay: false,
     },
     Attempt {
         interior: true,
         shrink: false,
+        delaunay: false,
     },
     Attempt {
         interior: true,
         shrink: true,
+        delaunay: false,
+    },
+    Attempt {
+        interior: false,
+        shrink: false,
+        delaunay: true,
+    },
+    Attempt {
+        interior: true,
+        shrink: false,
+        delaunay: true,
     },
 ];
 
@@ -219,12 +243,15 @@ fn mesh_surface(
     }
     let mut mesh = enclosed_delaunay(points, &bounding, &isolated)?;
     let mut part = Partition::new(&bounding);
-    // The later attempts follow a failure: a quarter as many points as triangles (anchor
-    // meshes well within it), so that an input they cannot mesh either fails in seconds.
+    // Two points per triangle, far more than any input that meshes needs (26 for 980
+    // triangles at most in the C test), so that an attempt that goes astray stops soon.
+    // The attempts with points inside first follow a failure: a quarter as many points as
+    // triangles (anchor meshes well within it), so that an input they cannot mesh either
+    // fails in seconds.
     let budget = if attempt.interior {
         bounding.len() / 4 + 64
     } else {
-        16 * bounding.len() + 1024
+        2 * bounding.len() + 64
     };
     recover(
         &mut mesh,
@@ -354,10 +381,17 @@ fn recover(
         }
         if !stuck.is_empty() {
             for [a, b] in stuck {
+                // A split's flips may have taken a later one away.
+                if !part.protected.edge(a, b) {
+                    continue;
+                }
                 before_first(&mut first_point, mesh, part, &faces_done, before_points)?;
                 spend(&mut budget, || format!("sub-edge ({a}, {b})"))?;
                 if let Some(c) = edges::first_crossing(mesh, a, b)? {
-                    steiner::split_subedge(mesh, part, a, b, c)?;
+                    let s = steiner::split_subedge(mesh, part, a, b, c)?;
+                    if attempt.delaunay {
+                        part.delaunay_around(s, &mesh.points);
+                    }
                 }
             }
             continue;
@@ -378,10 +412,16 @@ fn recover(
             return Ok(());
         }
         for (f, t) in stuck {
+            if !part.protected.facet(t) {
+                continue;
+            }
             before_first(&mut first_point, mesh, part, &faces_done, before_points)?;
             spend(&mut budget, || format!("triangle {f}"))?;
             if let Some(&(e, _)) = faces::crossing_edges(mesh, t).first() {
-                steiner::split_subface(mesh, part, f, t, e)?;
+                let s = steiner::split_subface(mesh, part, f, t, e)?;
+                if attempt.delaunay {
+                    part.delaunay_around(s, &mesh.points);
+                }
             }
         }
     }

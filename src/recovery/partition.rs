@@ -6,6 +6,10 @@
 //! whose interior it was added in. The partition is combinatorial: a point added on an input
 //! edge is in its chain whatever the rounding of its coordinates.
 //!
+//! A point splits the subfaces it lies on; with [`Partition::delaunay_around`], Lawson's
+//! flips then make the subfaces around it Delaunay in the triangle's plane (the chains of its
+//! edges stay), so that they do not grow thin where many points go on one triangle.
+//!
 //! Invariants: the subfaces of a triangle form a disk whose boundary is the chains of its
 //! three edges; `protected` holds exactly the current subfaces and their edges.
 
@@ -14,6 +18,8 @@ use rustc_hash::FxHashMap as HashMap;
 use super::by_vertex::{vertex_count, ByVertex};
 use super::flips::Protected;
 use super::tetmesh::key;
+use crate::geometry::{cross, sub};
+use crate::predicates::{incircle, orient2d, Point, Sign};
 
 /// Where a point added on the surface lies.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -143,7 +149,14 @@ impl Partition {
                 }
             }
         }
-        Host::Face(common.first().copied().unwrap_or(0))
+        // Inside the triangle whose subfaces have it as a side (two triangles can share both
+        // ends: a corner and a point on the edge they share, joined by a flip).
+        let e = pair(p, q);
+        let inside = common
+            .iter()
+            .copied()
+            .find(|&f| !self.with_side(f, e).is_empty());
+        Host::Face(inside.or(common.first().copied()).unwrap_or(0))
     }
 
     /// Whether vertex `v` lies on input edge `e`: an end of it, or a point added on it.
@@ -166,6 +179,15 @@ impl Partition {
         e
     }
 
+    /// The subfaces of input triangle `f` with side `e` (a sorted pair).
+    fn with_side(&self, f: usize, e: [u32; 2]) -> Vec<[u32; 3]> {
+        self.subfaces(f)
+            .iter()
+            .copied()
+            .filter(|&t| sides(t).contains(&e))
+            .collect()
+    }
+
     /// Every current subface with its input triangle, in triangle order.
     pub fn all_subfaces(&self) -> Vec<(usize, [u32; 3])> {
         (0..self.input.len())
@@ -182,12 +204,7 @@ impl Partition {
         };
         let e = pair(p, q);
         for &f in &faces {
-            let hit: Vec<[u32; 3]> = self
-                .subfaces(f)
-                .iter()
-                .copied()
-                .filter(|&t| sides(t).contains(&e))
-                .collect();
+            let hit = self.with_side(f, e);
             self.subfaces_mut(f).retain(|&t| !sides(t).contains(&e));
             for t in hit {
                 self.protected.facets.remove(&key(t));
@@ -214,6 +231,72 @@ impl Partition {
             self.protect(third);
         }
         self.host.insert(s, Host::Face(f));
+    }
+
+    /// Makes the subfaces around point `s`, just added, Delaunay in each input triangle
+    /// holding it.
+    pub fn delaunay_around(&mut self, s: u32, points: &[Point]) {
+        for f in self.faces_of(s) {
+            let fan = self.fan(f, s);
+            self.delaunay_flips(f, &fan, points);
+        }
+    }
+
+    /// Makes the subfaces of input triangle `f` around the sides of `start` Delaunay in the
+    /// triangle's plane (Lawson's flips of sub-edges inside `f`; the chains of its edges stay).
+    /// The decisions are exact on the points projected along the axis nearest the normal.
+    fn delaunay_flips(&mut self, f: usize, start: &[[u32; 3]], points: &[Point]) {
+        let [a, b, c] = self.input[f].map(|v| points[v as usize]);
+        let n = cross(&sub(&b, &a), &sub(&c, &a));
+        let axis = (0..3).fold(0, |m, k| if n[k].abs() > n[m].abs() { k } else { m });
+        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
+        let flat = |v: u32| {
+            let p = &points[v as usize];
+            if n[axis] > 0.0 {
+                [p[i], p[j]]
+            } else {
+                [p[j], p[i]]
+            }
+        };
+        let mut stack: Vec<[u32; 2]> = start.iter().flat_map(|&t| sides(t)).collect();
+        // Lawson's flips end; the bound is for subfaces that rounding left overlapping.
+        let mut budget = 64 * (self.subfaces(f).len() + 8);
+        while let Some(e) = stack.pop() {
+            if budget == 0 {
+                return;
+            }
+            budget -= 1;
+            let [t, u] = self.with_side(f, e)[..] else {
+                continue;
+            };
+            let r = (0..3).find(|&k| !e.contains(&t[k])).unwrap_or(0);
+            let [x, y, z] = [t[r], t[(r + 1) % 3], t[(r + 2) % 3]];
+            let w = u.into_iter().find(|v| !e.contains(v)).unwrap_or(u[0]);
+            let [px, py, pz, pw] = [x, y, z, w].map(flat);
+            // x y z and y w z positive, and the quadrilateral x y w z strictly convex.
+            let convex = [
+                [&px, &py, &pz],
+                [&py, &pw, &pz],
+                [&px, &py, &pw],
+                [&px, &pw, &pz],
+            ]
+            .into_iter()
+            .all(|[p, q, r]| orient2d(p, q, r) == Sign::Positive);
+            if !convex || incircle(&px, &py, &pz, &pw) != Sign::Positive {
+                continue;
+            }
+            // A diagonal along an edge of `f` (its ends on one chain, the points between them
+            // off it by rounding) would not be inside `f`.
+            if sides(self.input[f])
+                .iter()
+                .any(|&side| self.on_edge(x, side) && self.on_edge(w, side))
+            {
+                continue;
+            }
+            let new = [[x, y, w], [x, w, z]];
+            self.retriangulate(f, &[t, u], &new);
+            stack.extend([[x, y], [y, w], [w, z], [z, x]].map(|[p, q]| pair(p, q)));
+        }
     }
 
     /// The subfaces of `f` around vertex `v`.

@@ -154,14 +154,14 @@ fn cone_over(mesh: &mut TetMesh, set: &[u32], p: Point) -> Result<Option<u32>> {
     Ok(Some(s))
 }
 
-/// Adds a point on sub-edge `(p, q)` where it first crosses the mesh from `p`.
+/// Adds a point on sub-edge `(p, q)` where it first crosses the mesh from `p`; returns it.
 pub fn split_subedge(
     mesh: &mut TetMesh,
     part: &mut Partition,
     p: u32,
     q: u32,
     crossing: Crossing,
-) -> Result<()> {
+) -> Result<u32> {
     let (pp, pq) = (*mesh.point(p), *mesh.point(q));
     let (set, point) = match crossing {
         Crossing::Facet(t, i) => {
@@ -203,7 +203,7 @@ pub fn split_subedge(
     match added {
         Some(s) => {
             part.split_edge(p, q, s);
-            Ok(())
+            Ok(s)
         }
         None => Err(failure(format!(
             "no valid point found on the sub-edge ({p}, {q}) near {point:?}"
@@ -211,14 +211,14 @@ pub fn split_subedge(
     }
 }
 
-/// Adds a point where edge `(u, v)` crosses subface `t` of input triangle `f`.
+/// Adds a point where edge `(u, v)` crosses subface `t` of input triangle `f`; returns it.
 pub fn split_subface(
     mesh: &mut TetMesh,
     part: &mut Partition,
     f: usize,
     t: [u32; 3],
     [u, v]: [u32; 2],
-) -> Result<()> {
+) -> Result<u32> {
     if part.protected.edge(u, v) {
         return Err(failure(format!(
             "the surface edge ({u}, {v}) crosses the surface piece {t:?}: rounding"
@@ -235,7 +235,7 @@ pub fn split_subface(
     match cone(mesh, part, &shell, point)? {
         Some(s) => {
             part.split_face(f, t, s);
-            Ok(())
+            Ok(s)
         }
         None => Err(failure(format!(
             "no valid point found on triangle {f} where edge ({u}, {v}) crosses it"
