@@ -437,6 +437,44 @@ fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
     );
 }
 
+/// Remembered failures of edge removal change no removal: the same removals on the same
+/// mesh, with the failures forgotten before each, make the same mesh.
+#[test]
+fn remembered_failed_rings_change_no_removal() {
+    use delmesh::recovery::flips::{remove_edge_deep, Any, Protected};
+    use delmesh::recovery::tetmesh::TetMesh;
+    let mut next = uniform(0x9e37_79b9);
+    let points: Vec<[f64; 3]> = (0..60).map(|_| [next(), next(), next()]).collect();
+    let used: Vec<u32> = (0..60).collect();
+    let run = |forget: bool| {
+        let mut mesh = TetMesh::delaunay(points.clone(), &used).unwrap();
+        let protected = Protected::default();
+        let (mut removed, mut remembered) = (0, 0);
+        for round in 0..400usize {
+            let live: Vec<u32> = mesh.tets.live().collect();
+            let v = mesh.tets.vertices(live[(round * 7919) % live.len()]);
+            let e = [v[round % 4], v[(round + 1) % 4]];
+            if e.contains(&u32::MAX) {
+                continue;
+            }
+            if forget {
+                mesh.failed_rings.clear();
+            }
+            if remove_edge_deep(&mut mesh, &protected, e, &Any, 1, &mut 8).unwrap() {
+                removed += 1;
+            }
+            remembered = remembered.max(mesh.failed_rings.len());
+        }
+        mesh.validate().unwrap();
+        let tets: Vec<[u32; 4]> = mesh.tets.live().map(|t| mesh.tets.vertices(t)).collect();
+        (tets, removed, remembered)
+    };
+    let (kept, removed, remembered) = run(false);
+    let (forgotten, _, _) = run(true);
+    assert!(removed > 20 && remembered > 20, "{removed} {remembered}");
+    assert!(kept == forgotten, "remembered failures changed the mesh");
+}
+
 /// Flips and edge removals under the rule of guarded unblocking (`edges::Clear`: no new
 /// facet whose interior the segment crosses) never add a facet that the segment crosses.
 #[test]
@@ -585,7 +623,7 @@ fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
         ratio: f64::INFINITY,
         on_surface: None,
     };
-    let flips = improve_by_32_flips(&mut mesh, &protected, bound, all, &mut |_, _| {}).unwrap();
+    let flips = improve_by_32_flips(&mut mesh, &protected, bound, all, &mut |_, _, _| {}).unwrap();
     mesh.validate().unwrap();
     let after = finite(&mesh);
     assert!(flips > 0);
@@ -634,7 +672,8 @@ fn improving_32_flips_leave_tetrahedra_above_the_bound_only_on_the_surface() {
         };
         let all = mesh.tets.live().collect();
         let protected = Protected::default();
-        let flips = improve_by_32_flips(&mut mesh, &protected, bound, all, &mut |_, _| {}).unwrap();
+        let flips =
+            improve_by_32_flips(&mut mesh, &protected, bound, all, &mut |_, _, _| {}).unwrap();
         mesh.validate().unwrap();
         for &q in live(&mesh).difference(&before) {
             let r = ratio(&mesh, q);

@@ -28,8 +28,7 @@ pub struct Regions {
     pub component: Vec<u32>,
     pub label: Vec<i32>,
     pub max_volume: Vec<f64>,
-    /// Where the bounding triangles were when the regions were found (stale once refinement
-    /// has replaced tetrahedra).
+    /// Where the bounding triangles are, kept up to date by [`Regions::assign`].
     input: InputFacets,
 }
 
@@ -39,14 +38,27 @@ impl Regions {
         self.label[self.component[t as usize] as usize] != 0
     }
 
-    /// Puts the new tetrahedra `created` in component `c`.
-    pub fn assign(&mut self, created: &[u32], c: u32) {
+    /// Puts the new tetrahedra `created`, which replaced tetrahedra of `mesh` without
+    /// crossing a bounding triangle, in component `c`, and notes which of their facets are
+    /// bounding triangles.
+    pub fn assign(&mut self, mesh: &TetMesh, created: &[u32], c: u32) {
         for &t in created {
             if self.component.len() <= t as usize {
                 self.component.resize(t as usize + 1, u32::MAX);
             }
             self.component[t as usize] = c;
         }
+        self.input.renew(mesh, created);
+    }
+
+    /// Whether facet `i` of tetrahedron `t` is a bounding triangle.
+    pub fn on_surface(&self, t: u32, i: usize) -> bool {
+        self.input.contains(t, i)
+    }
+
+    /// One facet `(t, i)` per bounding triangle.
+    pub fn surface_facets(&self) -> &[(u32, usize)] {
+        &self.input.at
     }
 }
 
@@ -64,14 +76,19 @@ pub fn regions(
     label(mesh, input, component, (triangles, first_hull), options)
 }
 
-/// Where the input triangles are in the mesh: which facets of each tetrahedron slot are input
-/// triangles (bit `i` of `mask[t]` for facet `i`), and one facet `(t, i)` per triangle. Found
-/// in one pass over the tetrahedra (a search of each triangle's facet from a vertex costs
-/// several times more).
+/// Where the input triangles are in the mesh: the triangle number of every facet of every
+/// tetrahedron slot ([`NOT_INPUT`] for the other facets), and one facet `(t, i)` per
+/// triangle. Found in one pass over the tetrahedra (a search of each triangle's facet from a
+/// vertex costs several times more), then renewed where tetrahedra are replaced.
 struct InputFacets {
-    mask: Vec<u8>,
+    triangle: Vec<[u32; 4]>,
     at: Vec<(u32, usize)>,
 }
+
+/// The triangle number of a facet that is no input triangle.
+const NOT_INPUT: u32 = u32::MAX;
+/// The triangle number of the facets of a new tetrahedron, while [`InputFacets::renew`] runs.
+const NEW: u32 = u32::MAX - 1;
 
 impl InputFacets {
     /// Errors when an input triangle is not a facet of the mesh.
@@ -83,24 +100,20 @@ impl InputFacets {
                 (a, ([b, c], k as u32))
             }),
         );
-        let mut mask = vec![0u8; mesh.tets.slots()];
+        let mut triangle = vec![[NOT_INPUT; 4]; mesh.tets.slots()];
         let mut at = vec![(u32::MAX, 0); triangles.len()];
         for t in mesh.tets.live() {
             for i in 0..4 {
                 // Each facet once, from the lower of its two tetrahedra.
-                let n = mesh.tets.neighbor(t, i);
+                let g = mesh.tets.glued(t, i);
+                let (n, j) = (g >> 2, (g & 3) as usize);
                 if n < t {
                     continue;
                 }
                 let [a, b, c] = key(mesh.facet(t, i));
                 if let Some(&(_, k)) = index.find(a, |(bc, _)| *bc == [b, c]) {
-                    let j = (0..4)
-                        .find(|&j| mesh.tets.neighbor(n, j) == t)
-                        .ok_or_else(|| {
-                            Error::internal(format!("tetrahedra {t} and {n} not glued"))
-                        })?;
-                    mask[t as usize] |= 1 << i;
-                    mask[n as usize] |= 1 << j;
+                    triangle[t as usize][i] = k;
+                    triangle[n as usize][j] = k;
                     at[k as usize] = (t, i);
                 }
             }
@@ -111,12 +124,39 @@ impl InputFacets {
                 "input triangle {k} {f:?} is not a facet"
             )));
         }
-        Ok(InputFacets { mask, at })
+        Ok(InputFacets { triangle, at })
+    }
+
+    /// Notes the input triangles among the facets of the tetrahedra `created`, which
+    /// replaced others without crossing an input triangle: a facet glued to an older
+    /// tetrahedron is the triangle that one has there, and a facet between two new ones is
+    /// none (the input triangles were all facets before, and a triangle is the facet of one
+    /// pair of tetrahedra only).
+    fn renew(&mut self, mesh: &TetMesh, created: &[u32]) {
+        for &t in created {
+            if self.triangle.len() <= t as usize {
+                self.triangle.resize(t as usize + 1, [NOT_INPUT; 4]);
+            }
+            self.triangle[t as usize] = [NEW; 4];
+        }
+        for &t in created {
+            for i in 0..4 {
+                let g = mesh.tets.glued(t, i);
+                let k = match self.triangle[(g >> 2) as usize][(g & 3) as usize] {
+                    NEW => NOT_INPUT,
+                    k => k,
+                };
+                self.triangle[t as usize][i] = k;
+                if k != NOT_INPUT {
+                    self.at[k as usize] = (t, i);
+                }
+            }
+        }
     }
 
     /// Whether facet `i` of tetrahedron `t` is an input triangle.
     fn contains(&self, t: u32, i: usize) -> bool {
-        self.mask[t as usize] & (1 << i) != 0
+        self.triangle[t as usize][i] != NOT_INPUT
     }
 
     /// The tetrahedra on the front (right-hand normal) and back sides of input triangle `k`,
@@ -273,13 +313,13 @@ fn seed_component(
 }
 
 /// The output arrays: the mesh of the kept regions, with the input triangles as facets (the
-/// first of those [`regions`] was given; found again when `refined`). Steiner points have
-/// dimension 3, or 2 when `on_hull` (left on a kept convex hull).
+/// first of those [`regions`] was given). Steiner points have dimension 3, or 2 when
+/// `on_hull` (left on a kept convex hull).
 pub fn assemble(
-    mesh: &mut TetMesh,
+    mesh: &TetMesh,
     n_input: usize,
     triangles: &[[u32; 3]],
-    (regions, refined): (&Regions, bool),
+    regions: &Regions,
     on_hull: &dyn Fn(u32) -> bool,
 ) -> Result<Mesh> {
     let label_of = |t: u32| regions.label[regions.component[t as usize] as usize];
@@ -316,13 +356,7 @@ pub fn assemble(
         }
         labels.push(label_of(t));
     }
-    let found;
-    let input = if refined {
-        found = InputFacets::find(mesh, triangles)?;
-        &found
-    } else {
-        &regions.input
-    };
+    let input = &regions.input;
     let mut facet_labels = Vec::with_capacity(2 * triangles.len());
     for (k, &f) in triangles.iter().enumerate() {
         let (front, back) = input.sides(mesh, k, f);
@@ -344,4 +378,57 @@ pub fn assemble(
         facet_labels,
         ..Mesh::default()
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::recovery::partition::Partition;
+
+    /// The triangle numbers renewed through refinement, which replaces tetrahedra by
+    /// cavities and flips, are those a new search finds, and every triangle's facet is live.
+    #[test]
+    fn input_facets_renewed_through_refinement_are_where_a_search_finds_them() {
+        let points: Vec<[f64; 3]> = [
+            [1, 0, 0],
+            [-1, 0, 0],
+            [0, 1, 0],
+            [0, -1, 0],
+            [0, 0, 1],
+            [0, 0, -1],
+        ]
+        .map(|p| p.map(f64::from))
+        .to_vec();
+        let triangles = [
+            [0, 2, 4],
+            [2, 1, 4],
+            [1, 3, 4],
+            [3, 0, 4],
+            [2, 0, 5],
+            [1, 2, 5],
+            [3, 1, 5],
+            [0, 3, 5],
+        ];
+        let mut mesh = super::super::enclosed_delaunay(&points, &triangles, &[]).unwrap();
+        let options = SurfaceOptions {
+            max_volume: 0.002,
+            ..SurfaceOptions::default()
+        };
+        let mut regions = regions(&mut mesh, &triangles, triangles.len(), &options).unwrap();
+        let protected = Partition::new(&triangles).protected;
+        super::super::refine::refine(&mut mesh, &protected, &mut regions, 0.0, 6).unwrap();
+        // Six input vertices and the box's eight corners.
+        assert!(mesh.points.len() > 14 + 200, "{} points", mesh.points.len());
+        let found = InputFacets::find(&mesh, &triangles).unwrap();
+        for t in mesh.tets.live() {
+            assert_eq!(
+                regions.input.triangle[t as usize], found.triangle[t as usize],
+                "tetrahedron {t}"
+            );
+        }
+        for (k, &(t, i)) in regions.input.at.iter().enumerate() {
+            assert!(mesh.tets.is_live(t));
+            assert_eq!(found.triangle[t as usize][i], k as u32);
+        }
+    }
 }

@@ -262,4 +262,8 @@ impl Rule for Clear {
     fn facet(&self, mesh: &TetMesh, f: [u32; 3]) -> bool {
         !crosses(mesh, f, self.0[0], self.0[1])
     }
+
+    fn memo_key(&self) -> Option<[u32; 2]> {
+        Some(self.0)
+    }
 }

@@ -53,6 +53,13 @@ impl Protected {
 pub trait Rule {
     fn edge(&self, mesh: &TetMesh, u: u32, w: u32) -> bool;
 
+    /// A name for the rule when what it allows depends on nothing but the vertices' positions
+    /// and that name, so that rings it leaves without a triangulation are remembered
+    /// ([`FailedRings`]); `None`, the default, for rules that depend on more.
+    fn memo_key(&self) -> Option<[u32; 2]> {
+        None
+    }
+
     fn facet(&self, _mesh: &TetMesh, _f: [u32; 3]) -> bool {
         true
     }
@@ -70,6 +77,10 @@ pub struct Any;
 impl Rule for Any {
     fn edge(&self, _: &TetMesh, _: u32, _: u32) -> bool {
         true
+    }
+
+    fn memo_key(&self) -> Option<[u32; 2]> {
+        Some([INFINITE; 2])
     }
 }
 
@@ -146,7 +157,16 @@ fn remove_shell(
     if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
         return Ok(false);
     }
+    let memo = allowed
+        .memo_key()
+        .and_then(|rule| FailedRings::key(rule, [a, b], ring));
+    if memo.is_some_and(|k| mesh.failed_rings.contains(&k)) {
+        return Ok(false);
+    }
     let Some(triangles) = best_ring_triangulation(mesh, [a, b], ring, allowed) else {
+        if let Some(k) = memo {
+            mesh.failed_rings.insert(k);
+        }
         return Ok(false);
     };
     let mut new = Vec::with_capacity(2 * triangles.len());
@@ -157,6 +177,64 @@ fn remove_shell(
     }
     mesh.replace(shell, &new)?;
     Ok(true)
+}
+
+/// The edges whose ring, under a rule with a name ([`Rule::memo_key`]), has no
+/// triangulation into positive tetrahedra that the rule allows: [`best_ring_triangulation`]
+/// depends on nothing else than the positions of the edge's and the ring's vertices, so its
+/// failures are remembered while no point moves ([`TetMesh::move_point`] forgets them).
+/// Unblocking a segment removes the same edges of the same shells again and again: on
+/// fandisk, 92% of the failed searches had been made before, in the same ring.
+#[derive(Clone, Debug, Default)]
+pub struct FailedRings(FxHashSet<[u32; 4 + FailedRings::RING]>);
+
+impl FailedRings {
+    /// Longer rings are not remembered (and rarely met: shells are short).
+    const RING: usize = 16;
+    /// At most this many failures are remembered (a table of 2^14 entries of 81 bytes,
+    /// 1.3 MB); then they are forgotten and remembered anew. Chazelle's polyhedron with three
+    /// and four notches a side, past it many times, ran no faster with ten times as many.
+    const MOST: usize = 10_000;
+
+    fn contains(&self, k: &[u32; 4 + Self::RING]) -> bool {
+        self.0.contains(k)
+    }
+
+    fn insert(&mut self, k: [u32; 4 + Self::RING]) {
+        if self.0.len() == Self::MOST {
+            self.0.clear();
+        }
+        self.0.insert(k);
+    }
+
+    /// How many failures are remembered.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// The rule's name, the edge and its ring, padded with the infinite vertex (never in
+    /// a ring that is searched).
+    fn key(rule: [u32; 2], [a, b]: [u32; 2], ring: &[u32]) -> Option<[u32; 4 + Self::RING]> {
+        if ring.len() > Self::RING {
+            return None;
+        }
+        let mut k = [INFINITE; 4 + Self::RING];
+        k[..4].copy_from_slice(&[rule[0], rule[1], a, b]);
+        k[4..4 + ring.len()].copy_from_slice(ring);
+        Some(k)
+    }
+
+    /// Forgets every failure (a point moved).
+    pub fn clear(&mut self) {
+        // Clearing costs the table's capacity, and points are moved in long series.
+        if !self.0.is_empty() {
+            self.0.clear();
+        }
+    }
 }
 
 /// [`remove_edge`], and when it fails, shrinks the shell first (TetGen's `flipnm`): a 2-3
@@ -314,7 +392,7 @@ pub struct Bound<'a> {
 /// 3-2 flips that raise the worst shape of the tetrahedra they replace (TetGen's mesh
 /// optimization by edge removal, on shells of three): one fewer tetrahedron each. The
 /// tetrahedra of `queue` shaped worse than [`IMPROVED_BELOW`] are looked at, then those each
-/// pass makes. The new tetrahedra meet `bound`. `made(old, new)` is told each flip:
+/// pass makes. The new tetrahedra meet `bound`. `made(mesh, old, new)` is told each flip:
 /// one of the replaced tetrahedra (no protected facet separates them) and the two new ones.
 /// Returns how many flips were made.
 pub fn improve_by_32_flips(
@@ -322,7 +400,7 @@ pub fn improve_by_32_flips(
     protected: &Protected,
     bound: Bound,
     mut queue: Vec<u32>,
-    made: &mut dyn FnMut(u32, &[u32]),
+    made: &mut dyn FnMut(&TetMesh, u32, &[u32]),
 ) -> Result<usize> {
     let mut flips = 0;
     for _ in 0..IMPROVING_PASSES {
@@ -335,7 +413,7 @@ pub fn improve_by_32_flips(
                 continue;
             }
             if let Some(new) = improving_32_flip(mesh, protected, bound, t)? {
-                made(t, &new);
+                made(mesh, t, &new);
                 next.extend(new);
                 flips += 1;
             }

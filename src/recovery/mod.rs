@@ -299,12 +299,18 @@ fn mesh_surface(
             on_surface: (!volumes).then_some(&on_surface),
         };
         let kept = mesh.tets.live().filter(|&t| regions.kept(t)).collect();
-        flips::improve_by_32_flips(&mut mesh, &part.protected, bound, kept, &mut |old, new| {
-            let c = regions.component[old as usize];
-            regions.assign(new, c);
-        })?;
+        flips::improve_by_32_flips(
+            &mut mesh,
+            &part.protected,
+            bound,
+            kept,
+            &mut |mesh, old, new| {
+                let c = regions.component[old as usize];
+                regions.assign(mesh, new, c);
+            },
+        )?;
     }
-    classify::assemble(&mut mesh, points.len(), tris, (&regions, refined), &|v| {
+    classify::assemble(&mesh, points.len(), tris, &regions, &|v| {
         part.host.contains_key(&v)
     })
 }
@@ -329,7 +335,9 @@ fn recover(
 ) -> Result<()> {
     let mut first_point = true;
     // What is recovered stays: flips never destroy a protected edge or facet.
-    let (mut edges_done, present) = mesh.present(&part.protected);
+    let Some((mut edges_done, present)) = mesh.present(&part.protected) else {
+        return Ok(());
+    };
     let mut faces_done: HashSet<[u32; 3]> =
         HashSet::with_capacity_and_hasher(present.len(), Default::default());
     faces_done.extend(

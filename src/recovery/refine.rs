@@ -125,10 +125,10 @@ pub fn refine(
     refiner.run(n_input)
 }
 
-/// The protected edges and facets as refinement asks for them: a flag per vertex lying on
-/// them answers first, so that the many questions about entities with another vertex (the
-/// refinement's own points above all) need no lookup in the large hash sets, whose random
-/// accesses miss the cache.
+/// The protected edges as refinement asks for them: a flag per vertex lying on them answers
+/// first, so that the many questions about edges with another vertex (the refinement's own
+/// points above all) need no lookup in the large hash set, whose random accesses miss the
+/// cache. (Whether a facet is protected, the regions tell: [`Regions::on_surface`].)
 struct Surface<'a> {
     protected: &'a Protected,
     on: Vec<bool>,
@@ -145,10 +145,6 @@ impl<'a> Surface<'a> {
         vertices
             .iter()
             .all(|&v| self.on.get(v as usize).copied().unwrap_or(false))
-    }
-
-    fn facet(&self, f: [u32; 3]) -> bool {
-        self.all_on(&f) && self.protected.facet(f)
     }
 
     fn edge(&self, a: u32, b: u32) -> bool {
@@ -309,7 +305,7 @@ impl Refiner<'_> {
             self.mesh.pop_point();
             return Ok(false);
         };
-        self.regions.assign(&created, component);
+        self.regions.assign(self.mesh, &created, component);
         self.lfs.push(0.0);
         // After a whole Bowyer-Watson cavity, Lawson's flips are skipped: each boundary facet
         // is locally Delaunay (the facet test is symmetric, and `c` is outside the
@@ -334,15 +330,14 @@ impl Refiner<'_> {
     /// an input triangle nor leaves the kept regions (the convex hull when it is kept);
     /// `None` when `c` is beyond one, on one, on a vertex, or the walk does not end.
     fn locate(&self, t: u32, c: &Point) -> Option<u32> {
-        let at = self.mesh.walk(t, c, WALK, |_, f, n| {
-            !self.surface.facet(f) && self.regions.kept(n)
+        let at = self.mesh.walk(t, c, WALK, |_, u, i, n| {
+            !self.regions.on_surface(u, i) && self.regions.kept(n)
         })?;
         let mut zeros = 0;
         for i in 0..4 {
-            let f = self.mesh.facet(at, i);
-            let [a, b, d] = f.map(|v| self.mesh.point(v));
+            let [a, b, d] = self.mesh.facet(at, i).map(|v| self.mesh.point(v));
             if orient3d(a, b, d, c) == Sign::Zero {
-                if self.surface.facet(f) {
+                if self.regions.on_surface(at, i) {
                     return None;
                 }
                 zeros += 1;
@@ -358,7 +353,7 @@ impl Refiner<'_> {
             let q = me.mesh.tets.vertices(n);
             if me.mesh.tets.mark[n as usize] == 7
                 || q.contains(&INFINITE)
-                || me.surface.facet(me.mesh.facet(u, i))
+                || me.regions.on_surface(u, i)
             {
                 return false;
             }
@@ -422,7 +417,7 @@ impl Refiner<'_> {
                 continue;
             }
             let f = self.mesh.facet(u, i);
-            if self.surface.facet(f) {
+            if self.regions.on_surface(u, i) {
                 let p = f.map(|x| self.mesh.point(x));
                 let center = triangle_circumcenter(p);
                 if dist2(c, &center) < dist2(p[0], &center) {
@@ -566,7 +561,7 @@ impl Refiner<'_> {
                 if let Some(created) = self.flip_if_not_delaunay(t, i)? {
                     self.flips_left -= 1;
                     let component = self.regions.component[t as usize];
-                    self.regions.assign(&created, component);
+                    self.regions.assign(self.mesh, &created, component);
                     for &u in &created {
                         self.wait(&mut stack, u);
                     }
@@ -596,7 +591,7 @@ impl Refiner<'_> {
     fn flip_if_not_delaunay(&mut self, t: u32, i: usize) -> Result<Option<Vec<u32>>> {
         let (d, [x, y, z]) = self.mesh.with_apex(t, i);
         let n = self.mesh.tets.neighbor(t, i);
-        if self.surface.facet([x, y, z]) || !self.regions.kept(n) {
+        if self.regions.on_surface(t, i) || !self.regions.kept(n) {
             return Ok(None);
         }
         let e = self.mesh.across(t, i);
@@ -624,77 +619,73 @@ impl Refiner<'_> {
 
     /// The protecting-ball radius of every input vertex (TetGen's feature size with `-Y`):
     /// the distance to the nearest other input vertex, input edge or input triangle of its
-    /// link, the latter two only where the vertex projects inside them. One pass over the
-    /// tetrahedra visits every vertex's link, facet by facet (the facet of a tetrahedron
-    /// opposite the vertex), and looks up the protected edges and facets in lists by
-    /// smallest vertex.
+    /// link, the latter two only where the vertex projects inside them; 0 for the others.
+    /// The nearest vertex is found from every tetrahedron's edges; the input triangles from
+    /// where the regions know them: both tetrahedra of one have it in their apex's link,
+    /// and every vertex of the ring of one of its sides has that side in its link (every
+    /// input edge is a side of an input triangle). Squared distances are compared, and the
+    /// square root (monotone) taken once per vertex.
     fn protecting_radii(&self, n_input: u32) -> Vec<f64> {
-        let n = self.mesh.points.len();
+        let mesh = &*self.mesh;
+        let n = mesh.points.len();
+        let input = |v: u32| v < n_input;
+        let mut nearest2 = vec![f64::INFINITY; n];
+        let mut nearest_facet = vec![f64::INFINITY; n];
+        for t in mesh.tets.live() {
+            let q = mesh.tets.vertices(t);
+            for [i, j] in EDGES {
+                if input(q[i]) && input(q[j]) {
+                    let d2 = dist2(mesh.point(q[i]), mesh.point(q[j]));
+                    for v in [q[i], q[j]] {
+                        nearest2[v as usize] = nearest2[v as usize].min(d2);
+                    }
+                }
+            }
+        }
         let protected = self.surface.protected;
         let edges = ByVertex::new(n, protected.edges.iter().map(|&[a, b]| (a, b)));
-        let facets = ByVertex::new(n, protected.facets.iter().map(|&[a, b, c]| (a, [b, c])));
-        let mut lfs: Vec<f64> = (0..n as u32)
+        let mut edge_done = vec![false; edges.items.len()];
+        for &(t, i) in self.regions.surface_facets() {
+            let g = mesh.tets.glued(t, i);
+            for (u, k) in [(t, i), (g >> 2, (g & 3) as usize)] {
+                let q = mesh.tets.vertices(u);
+                if input(q[k]) {
+                    let d = triangle_distance(mesh.point(q[k]), FACE[k].map(|m| mesh.point(q[m])));
+                    let near = &mut nearest_facet[q[k] as usize];
+                    *near = near.min(d);
+                }
+            }
+            let [a, b, c] = key(mesh.facet(t, i));
+            for [x, y] in [[a, b], [a, c], [b, c]] {
+                let Some(e) = edges.position(x, &y) else {
+                    continue;
+                };
+                if std::mem::replace(&mut edge_done[e], true) {
+                    continue;
+                }
+                let (px, py) = (mesh.point(x), mesh.point(y));
+                mesh.ring(t, x, y, |w| {
+                    if input(w) {
+                        let d2 = segment_distance2(mesh.point(w), px, py);
+                        nearest2[w as usize] = nearest2[w as usize].min(d2);
+                    }
+                });
+            }
+        }
+        (0..n as u32)
             .map(|v| {
-                if v < n_input && self.mesh.in_mesh(v) {
-                    f64::INFINITY
+                if input(v) && mesh.in_mesh(v) {
+                    nearest2[v as usize].sqrt().min(nearest_facet[v as usize])
                 } else {
                     0.0
                 }
             })
-            .collect();
-        for t in self.mesh.tets.live() {
-            let q = self.mesh.tets.vertices(t);
-            if q.contains(&INFINITE) {
-                continue;
-            }
-            // Each of the six edges is measured and looked up once for the four links.
-            let point = |k: usize| self.mesh.point(q[k]);
-            let lengths = EDGES.map(|[i, j]| {
-                if q[i] < n_input && q[j] < n_input {
-                    dist(point(i), point(j))
-                } else {
-                    f64::INFINITY
-                }
-            });
-            let protected =
-                EDGES.map(|[i, j]| edges.position(q[i].min(q[j]), &q[i].max(q[j])).is_some());
-            for (i, &v) in q.iter().enumerate() {
-                if v >= n_input {
-                    continue;
-                }
-                let p = point(i);
-                let mut size = lfs[v as usize];
-                for k in 0..3 {
-                    let (x, y) = (FACE[i][k], FACE[i][(k + 1) % 3]);
-                    size = size.min(lengths[edge_index(i, x)]);
-                    if protected[edge_index(x, y)] {
-                        size = size.min(segment_distance(p, point(x), point(y)));
-                    }
-                }
-                // A protected facet has protected sides: most facets need no lookup.
-                let sides = (0..3).all(|k| protected[edge_index(FACE[i][k], FACE[i][(k + 1) % 3])]);
-                let [a, b, c] = key(FACE[i].map(|k| q[k]));
-                if sides && facets.position(a, &[b, c]).is_some() {
-                    size = size.min(triangle_distance(p, FACE[i].map(point)));
-                }
-                lfs[v as usize] = size;
-            }
-        }
-        lfs
+            .collect()
     }
 }
 
 /// The six edges of a tetrahedron, by local vertex indices.
 const EDGES: [[usize; 2]; 6] = [[0, 1], [0, 2], [0, 3], [1, 2], [1, 3], [2, 3]];
-
-/// The position in [`EDGES`] of the edge joining local vertices `i` and `j`.
-fn edge_index(i: usize, j: usize) -> usize {
-    match (i.min(j), i.max(j)) {
-        (0, k) => k - 1,
-        (1, k) => k + 1,
-        _ => 5,
-    }
-}
 
 /// The circumcenter of tetrahedron `p`, or, when rounding leaves it undetermined (a flat
 /// tetrahedron of nearly cocircular points: its distances to the vertices differ by more than
@@ -725,14 +716,14 @@ fn radius_edge_ratio(mesh: &TetMesh, t: u32) -> f64 {
     crate::quality::radius_edge(mesh.tets.vertices(t).map(|v| *mesh.point(v)))
 }
 
-/// Distance from `p` to segment `ab` where `p` projects inside it, else infinity.
-fn segment_distance(p: &Point, a: &Point, b: &Point) -> f64 {
+/// Squared distance from `p` to segment `ab` where `p` projects inside it, else infinity.
+fn segment_distance2(p: &Point, a: &Point, b: &Point) -> f64 {
     let ab = sub(b, a);
     let s = dot(&sub(p, a), &ab) / dot(&ab, &ab);
     if !(0.0..=1.0).contains(&s) {
         return f64::INFINITY;
     }
-    dist(p, &[a[0] + s * ab[0], a[1] + s * ab[1], a[2] + s * ab[2]])
+    dist2(p, &[a[0] + s * ab[0], a[1] + s * ab[1], a[2] + s * ab[2]])
 }
 
 /// Distance from `p` to the plane of triangle `t` where `p` projects inside it, else

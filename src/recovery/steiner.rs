@@ -74,7 +74,7 @@ const WALK: usize = 4096;
 /// protected, `p` is at a vertex, or the walk stops.
 fn holding(mesh: &TetMesh, part: &Partition, t: u32, p: &Point) -> Option<Vec<u32>> {
     let protected = |f: [u32; 3]| part.protected.facet(f);
-    let at = mesh.walk(t, p, WALK, |m, _, n| {
+    let at = mesh.walk(t, p, WALK, |m, _, _, n| {
         !m.tets.vertices(n).contains(&INFINITE)
     })?;
     let on: Vec<usize> = (0..4)

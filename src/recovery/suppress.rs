@@ -311,7 +311,7 @@ fn move_off(
         let placed = directions.iter().flatten().any(|d| {
             let mut step = 0.25 * reach;
             (0..MOVES).any(|_| {
-                mesh.points[q as usize] = add(&origin, &[step * d[0], step * d[1], step * d[2]]);
+                mesh.move_point(q, add(&origin, &[step * d[0], step * d[1], step * d[2]]));
                 step *= 0.5;
                 tets.iter().all(|&t| mesh.positive(t))
             })
@@ -721,7 +721,7 @@ fn relocate(mesh: &mut TetMesh, s: u32) {
     };
     for (target, step) in candidates.into_iter().chain(deep) {
         let p = [0, 1, 2].map(|k| at[k] + step * (target[k] - at[k]));
-        mesh.points[s as usize] = p;
+        mesh.move_point(s, p);
         if star.iter().all(|&q| mesh.positive(q)) {
             let w = worst(mesh);
             if w < best.0 {
@@ -729,7 +729,7 @@ fn relocate(mesh: &mut TetMesh, s: u32) {
             }
         }
     }
-    mesh.points[s as usize] = best.1;
+    mesh.move_point(s, best.1);
 }
 
 /// A point of the kernel of the star `star` of `s` far from the planes of its link
@@ -927,7 +927,7 @@ mod tests {
         let mut mesh = TetMesh::delaunay(points, &(0..9).collect::<Vec<u32>>()).unwrap();
         let ball = mesh.ball(8);
         let star: Vec<[u32; 4]> = ball.iter().map(|&t| mesh.tets.vertices(t)).collect();
-        mesh.points[8] = [0.4, 0.55, 1e-15];
+        mesh.move_point(8, [0.4, 0.55, 1e-15]);
         assert!(star.iter().all(|&q| mesh.positive(q)));
         let deepest = deepest_in_kernel(&mesh, &star, 8);
         // The kernel is the cube: the distance to its nearest face is at most 0.5.
@@ -936,7 +936,7 @@ mod tests {
             .map(|&x| x.min(1.0 - x))
             .fold(f64::INFINITY, f64::min);
         assert!(depth > 0.25, "{deepest:?}");
-        mesh.points[8] = deepest;
+        mesh.move_point(8, deepest);
         assert!(star.iter().all(|&q| mesh.positive(q)));
     }
 }

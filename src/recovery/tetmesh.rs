@@ -13,7 +13,7 @@
 use rustc_hash::FxHashSet;
 
 use super::by_vertex::ByVertex;
-use super::flips::Protected;
+use super::flips::{FailedRings, Protected};
 use crate::error::{Error, Result};
 use crate::predicates::{orient3d, Point, Sign};
 use crate::triangulation::edge_table::EdgeTable;
@@ -48,6 +48,7 @@ pub fn key([a, b, c]: [u32; 3]) -> Key {
 
 #[derive(Clone)]
 pub struct TetMesh {
+    /// Moved only by [`TetMesh::move_point`].
     pub points: Vec<Point>,
     pub tets: Tets,
     vertex_tet: Vec<u32>,
@@ -59,6 +60,8 @@ pub struct TetMesh {
     first_added: u32,
     /// A tetrahedron was replaced or a point added since the Delaunay triangulation.
     changed: bool,
+    /// Edge removals known to fail while no point moves.
+    pub failed_rings: FailedRings,
 }
 
 impl TetMesh {
@@ -86,6 +89,7 @@ impl TetMesh {
             edges: EdgeTable::default(),
             first_added: 0,
             changed: false,
+            failed_rings: FailedRings::default(),
         };
         mesh.first_added = mesh.points.len() as u32;
         for t in 0..mesh.tets.slots() as u32 {
@@ -132,6 +136,14 @@ impl TetMesh {
     pub fn pop_point(&mut self) {
         self.points.pop();
         self.vertex_tet.pop();
+        // The next point added takes its number.
+        self.failed_rings.clear();
+    }
+
+    /// Moves point `v` to `p`.
+    pub fn move_point(&mut self, v: u32, p: Point) {
+        self.points[v as usize] = p;
+        self.failed_rings.clear();
     }
 
     /// Whether vertex `v` is in some tetrahedron.
@@ -208,24 +220,24 @@ impl TetMesh {
         result
     }
 
-    /// The tetrahedron whose closure holds `c`, by a visibility walk from `t`: a facet whose
-    /// plane has `c` strictly beyond it is crossed when `may_cross(self, facet, next)`. `None`
-    /// when a crossing is refused or the walk takes more than `steps` steps.
+    /// The tetrahedron whose closure holds `c`, by a visibility walk from `t`: facet `i` of
+    /// tetrahedron `at`, whose plane has `c` strictly beyond it, is crossed into `next` when
+    /// `may_cross(self, at, i, next)`. `None` when a crossing is refused or the walk takes
+    /// more than `steps` steps.
     pub fn walk(
         &self,
         t: u32,
         c: &Point,
         steps: usize,
-        may_cross: impl Fn(&TetMesh, [u32; 3], u32) -> bool,
+        may_cross: impl Fn(&TetMesh, u32, usize, u32) -> bool,
     ) -> Option<u32> {
         let mut at = t;
         'walk: for _ in 0..steps {
             for i in 0..4 {
-                let f = self.facet(at, i);
-                let [a, b, d] = f.map(|v| self.point(v));
+                let [a, b, d] = self.facet(at, i).map(|v| self.point(v));
                 if orient3d(a, b, d, c) == Sign::Negative {
                     let n = self.tets.neighbor(at, i);
-                    if !may_cross(self, f, n) {
+                    if !may_cross(self, at, i, n) {
                         return None;
                     }
                     at = n;
@@ -237,14 +249,19 @@ impl TetMesh {
         None
     }
 
-    /// The protected edges (sorted pairs) and facets (sorted triples) that are in the mesh.
+    /// The protected edges (sorted pairs) and facets (sorted triples) that are in the mesh;
+    /// `None` when they all are (every protected edge is a side of a protected facet: most
+    /// inputs are so in their Delaunay triangulation, and their sets are not built).
     /// The protected sets are looked up in lists by smallest vertex ([`ByVertex`]), the
     /// hits flagged, and the result sets built once from the flags. Facets are found in one
     /// pass over the tetrahedra, each facet once; a facet found brings its edges, and only
     /// the protected edges of no facet found are searched around their smaller vertex
     /// (bunny00: 158 -> 97 million instructions against looking up the six edges of every
     /// tetrahedron).
-    pub fn present(&mut self, protected: &Protected) -> (FxHashSet<[u32; 2]>, FxHashSet<Key>) {
+    pub fn present(
+        &mut self,
+        protected: &Protected,
+    ) -> Option<(FxHashSet<[u32; 2]>, FxHashSet<Key>)> {
         let n = self.points.len();
         let edge_lists = ByVertex::new(n, protected.edges.iter().map(|&[a, b]| (a, b)));
         let facet_lists = ByVertex::new(n, protected.facets.iter().map(|&[a, b, c]| (a, [b, c])));
@@ -266,6 +283,9 @@ impl TetMesh {
                 }
             }
         }
+        if facet_found.iter().all(|&f| f) {
+            return None;
+        }
         for (a, k) in edge_lists.entries() {
             if !edge_found[k] {
                 edge_found[k] = self.find_edge(a, edge_lists.items[k]).is_some();
@@ -279,7 +299,7 @@ impl TetMesh {
             &facet_found,
             facet_lists.pairs(&facet_found).map(|(a, [b, c])| [a, b, c]),
         );
-        (edges, facets)
+        Some((edges, facets))
     }
 
     /// A tetrahedron with edge `(a, b)`, if the edge exists.
@@ -365,6 +385,30 @@ impl TetMesh {
             let [_, next] = self.others(current, a, b);
             tets.push(current);
             ring.push(next);
+        }
+    }
+
+    /// Calls `visit` on every vertex of the ring of edge `(a, b)` of tetrahedron `t`, in
+    /// [`TetMesh::shell`] order, without allocating.
+    pub fn ring(&self, t: u32, a: u32, b: u32, mut visit: impl FnMut(u32)) {
+        let [c, d] = self.others(t, a, b);
+        visit(c);
+        // Tetrahedron `current` is (a, b, opposite, last): across the facet opposite
+        // `opposite` is (a, b, last, next).
+        let (mut current, mut opposite, mut last) = (t, c, d);
+        for _ in 0..self.tets.slots() {
+            visit(last);
+            let v = self.tets.vertices(current);
+            let Some(i) = v.iter().position(|&x| x == opposite) else {
+                return;
+            };
+            let g = self.tets.glued(current, i);
+            current = g >> 2;
+            if current == t {
+                return;
+            }
+            let next = self.tets.vertices(current)[(g & 3) as usize];
+            (opposite, last) = (last, next);
         }
     }
 
