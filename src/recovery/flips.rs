@@ -169,13 +169,7 @@ fn remove_shell(
         }
         return Ok(false);
     };
-    let mut new = Vec::with_capacity(2 * triangles.len());
-    for [i, k, j] in triangles {
-        let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
-        new.push([a, wj, wi, wk]);
-        new.push([b, wj, wk, wi]);
-    }
-    mesh.replace(shell, &new)?;
+    mesh.remove_edge_by_ring([a, b], (shell, ring), &triangles)?;
     Ok(true)
 }
 

@@ -464,6 +464,68 @@ impl TetMesh {
         self.apply(&shell, &new, &gluing)
     }
 
+    /// Removes edge `(a, b)`, with the shell and ring [`TetMesh::shell`] gave, by the
+    /// triangulation `triangles` of its ring polygon (index triples `(i, k, j)`, `i < k < j`):
+    /// the tetrahedra `(a, w_j, w_i, w_k)` and `(b, w_j, w_k, w_i)` of each triangle, in that
+    /// order, glued directly: across the triangle to each other, across a side of the ring to
+    /// the shell's outside, across a diagonal to the two of the other triangle on it (no
+    /// facet matching). Orientation is the caller's business. Returns their ids.
+    pub fn remove_edge_by_ring(
+        &mut self,
+        [a, b]: [u32; 2],
+        (shell, ring): (&[u32], &[u32]),
+        triangles: &[[usize; 3]],
+    ) -> Result<Vec<u32>> {
+        let n = ring.len();
+        // The facet of shell tetrahedron m, (a, b, w_m, w_m+1), opposite x, glued outside.
+        let outside = |m: usize, x: u32| {
+            let v = self.tets.vertices(shell[m]);
+            let i = v.iter().position(|&y| y == x).unwrap_or(0);
+            Glue::Outer(self.tets.glued(shell[m], i))
+        };
+        let mut new = Vec::with_capacity(2 * triangles.len());
+        let mut gluing = Vec::with_capacity(2 * triangles.len());
+        // Diagonals met once: (i, j), the triangle's first new tetrahedron, and the facets
+        // of both new tetrahedra on it.
+        let mut open: Vec<([usize; 2], usize, [usize; 2])> = Vec::with_capacity(n);
+        for (t, &[i, k, j]) in triangles.iter().enumerate() {
+            let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
+            new.push([a, wj, wi, wk]);
+            new.push([b, wj, wk, wi]);
+            let (x, y) = (2 * t, 2 * t + 1);
+            gluing.push([Glue::Inner(y, 0); 4]);
+            gluing.push([Glue::Inner(x, 0); 4]);
+            // Facet 1 of (a, w_j, w_i, w_k) holds (w_i, w_k), facet 2 (w_k, w_j), facet 3
+            // (w_i, w_j); of (b, w_j, w_k, w_i), facets 1, 3, 2.
+            for (edge, [fa, fb]) in [([i, k], [1, 1]), ([k, j], [2, 3]), ([i, j], [3, 2])] {
+                let side = match edge {
+                    [p, q] if q == p + 1 => Some(p),
+                    [0, q] if q == n - 1 => Some(q),
+                    _ => None,
+                };
+                if let Some(m) = side {
+                    gluing[x][fa] = outside(m, b);
+                    gluing[y][fb] = outside(m, a);
+                } else if let Some(o) = open.iter().position(|&(e, ..)| e == edge) {
+                    let (_, u, [ga, gb]) = open.swap_remove(o);
+                    gluing[x][fa] = Glue::Inner(u, ga);
+                    gluing[u][ga] = Glue::Inner(x, fa);
+                    gluing[y][fb] = Glue::Inner(u + 1, gb);
+                    gluing[u + 1][gb] = Glue::Inner(y, fb);
+                } else {
+                    open.push((edge, x, [fa, fb]));
+                }
+            }
+        }
+        if !open.is_empty() || triangles.len() + 2 != n {
+            return Err(Error::internal(format!(
+                "the ring triangulation {triangles:?} of edge ({a}, {b}) does not tile its \
+                 polygon of {n} vertices"
+            )));
+        }
+        self.apply(shell, &new, &gluing)
+    }
+
     /// Replaces the tetrahedra `old` by `new` (vertex quadruples), which must fill the same
     /// region: every facet of a new tetrahedron is either a boundary facet of `old` or a facet
     /// of exactly one other new tetrahedron, and every boundary facet of `old` is used. The
