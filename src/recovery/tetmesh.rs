@@ -8,7 +8,9 @@
 //!
 //! Invariants (those of [`Tets`], checked by [`TetMesh::validate`]): vertex ids index
 //! `points`; every live finite tetrahedron is positively oriented; adjacency is symmetric;
-//! `vertex_tet[v]` is a live tetrahedron incident to `v` for every vertex in use.
+//! `vertex_tet[v]` is a live tetrahedron incident to `v` for every vertex in use;
+//! `failed_rings` holds only failures that the points' current positions make (it is emptied
+//! when a point moves or its number is given back).
 
 use rustc_hash::FxHashSet;
 
