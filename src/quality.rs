@@ -6,7 +6,7 @@
 //! one). Per boundary facet: its smallest angle. Computed in floating point: these are
 //! measurements, not decisions.
 
-use crate::geometry::{circumcenter, cross, dist2, dot, norm, sub, tet_volume};
+use crate::geometry::{cross, dist2, dot, norm, sub, tet_volume};
 use crate::mesh::Mesh;
 
 type P = [f64; 3];
@@ -113,20 +113,20 @@ pub fn min_dihedral(p: [P; 4]) -> f64 {
 }
 
 /// Circumradius over shortest edge of the tetrahedron `p`; infinite when it is flat. Squared
-/// lengths throughout and one square root (refinement measures every tetrahedron it makes):
-/// the circumcenter's offset from `p[0]` times `2 det` is `|u|² (v × w) + |v|² (w × u) +
-/// |w|² (u × v)` for the edges `u`, `v`, `w` from `p[0]`.
+/// lengths throughout and one square root (refinement measures every tetrahedron it makes).
 pub fn radius_edge(p: [P; 4]) -> f64 {
-    let (u, v, w) = (sub(&p[1], &p[0]), sub(&p[2], &p[0]), sub(&p[3], &p[0]));
-    let (nu, nv, nw) = (dot(&u, &u), dot(&v, &v), dot(&w, &w));
-    let (vw, wu, uv) = (cross(&v, &w), cross(&w, &u), cross(&u, &v));
-    let det2 = 2.0 * dot(&u, &vw);
-    let offset: P = std::array::from_fn(|k| nu * vw[k] + nv * wu[k] + nw * uv[k]);
-    let radius2 = dot(&offset, &offset) / (det2 * det2);
-    let shortest2 = [nu, nv, nw, dist2(&u, &v), dist2(&u, &w), dist2(&v, &w)]
-        .into_iter()
-        .fold(f64::INFINITY, f64::min);
-    ratio_or_infinite((radius2 / shortest2).sqrt())
+    let (u, v, w) = edges_from_first(&p);
+    let shortest2 = [
+        dot(&u, &u),
+        dot(&v, &v),
+        dot(&w, &w),
+        dist2(&u, &v),
+        dist2(&u, &w),
+        dist2(&v, &w),
+    ]
+    .into_iter()
+    .fold(f64::INFINITY, f64::min);
+    ratio_or_infinite((circumradius2(u, v, w) / shortest2).sqrt())
 }
 
 /// The length of the shortest edge of the tetrahedron `p`.
@@ -138,7 +138,24 @@ pub fn shortest_edge(p: &[P; 4]) -> f64 {
 }
 
 fn circumradius(p: &[P; 4]) -> f64 {
-    norm(&sub(&circumcenter([&p[0], &p[1], &p[2], &p[3]]), &p[0]))
+    let (u, v, w) = edges_from_first(p);
+    circumradius2(u, v, w).sqrt()
+}
+
+/// The edges `u`, `v`, `w` from `p[0]` to the other vertices.
+fn edges_from_first(p: &[P; 4]) -> (P, P, P) {
+    (sub(&p[1], &p[0]), sub(&p[2], &p[0]), sub(&p[3], &p[0]))
+}
+
+/// The squared circumradius of the tetrahedron with edges `u`, `v`, `w` from a vertex: the
+/// circumcenter's offset from that vertex times `2 det` is `|u|² (v × w) + |v|² (w × u) +
+/// |w|² (u × v)` (infinite or NaN when it is flat).
+fn circumradius2(u: P, v: P, w: P) -> f64 {
+    let (nu, nv, nw) = (dot(&u, &u), dot(&v, &v), dot(&w, &w));
+    let (vw, wu, uv) = (cross(&v, &w), cross(&w, &u), cross(&u, &v));
+    let det2 = 2.0 * dot(&u, &vw);
+    let offset: P = std::array::from_fn(|k| nu * vw[k] + nv * wu[k] + nw * uv[k]);
+    dot(&offset, &offset) / (det2 * det2)
 }
 
 /// A ratio of lengths, infinite where a flat tetrahedron makes it undefined.

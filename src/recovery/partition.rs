@@ -155,7 +155,7 @@ impl Partition {
         let inside = common
             .iter()
             .copied()
-            .find(|&f| !self.with_side(f, e).is_empty());
+            .find(|&f| self.with_side(f, e).next().is_some());
         Host::Face(inside.or(common.first().copied()).unwrap_or(0))
     }
 
@@ -180,12 +180,11 @@ impl Partition {
     }
 
     /// The subfaces of input triangle `f` with side `e` (a sorted pair).
-    fn with_side(&self, f: usize, e: [u32; 2]) -> Vec<[u32; 3]> {
+    fn with_side(&self, f: usize, e: [u32; 2]) -> impl Iterator<Item = [u32; 3]> + '_ {
         self.subfaces(f)
             .iter()
             .copied()
-            .filter(|&t| sides(t).contains(&e))
-            .collect()
+            .filter(move |&t| sides(t).contains(&e))
     }
 
     /// Every current subface with its input triangle, in triangle order.
@@ -204,7 +203,7 @@ impl Partition {
         };
         let e = pair(p, q);
         for &f in &faces {
-            let hit = self.with_side(f, e);
+            let hit: Vec<[u32; 3]> = self.with_side(f, e).collect();
             self.subfaces_mut(f).retain(|&t| !sides(t).contains(&e));
             for t in hit {
                 self.protected.facets.remove(&key(t));
@@ -266,9 +265,11 @@ impl Partition {
                 return;
             }
             budget -= 1;
-            let [t, u] = self.with_side(f, e)[..] else {
+            let mut on_e = self.with_side(f, e);
+            let (Some(t), Some(u), None) = (on_e.next(), on_e.next(), on_e.next()) else {
                 continue;
             };
+            drop(on_e);
             let r = (0..3).find(|&k| !e.contains(&t[k])).unwrap_or(0);
             let [x, y, z] = [t[r], t[(r + 1) % 3], t[(r + 2) % 3]];
             let w = u.into_iter().find(|v| !e.contains(v)).unwrap_or(u[0]);

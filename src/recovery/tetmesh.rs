@@ -365,53 +365,50 @@ impl TetMesh {
     /// vertices: tetrahedron `k` is `(a, b, w[k], w[k+1])`, positively oriented (indices mod
     /// the ring length). `None` if the ring is not closed within `limit` steps.
     pub fn shell(&self, t: u32, a: u32, b: u32, limit: usize) -> Option<(Vec<u32>, Vec<u32>)> {
-        let [c, d] = self.others(t, a, b);
         // Shells are short: one allocation each, not one per doubling.
         let (mut tets, mut ring) = (Vec::with_capacity(16), Vec::with_capacity(16));
-        tets.push(t);
-        ring.extend([c, d]);
-        let mut current = t;
-        loop {
-            // Cross the facet (a, b, w_last) into the next tetrahedron: opposite w[len-2].
-            let opposite = ring[ring.len() - 2];
-            let v = self.tets.vertices(current);
-            let i = v.iter().position(|&x| x == opposite)?;
-            current = self.tets.neighbor(current, i);
-            if current == t {
-                ring.pop();
-                return Some((tets, ring));
-            }
-            if tets.len() >= limit {
-                return None;
-            }
-            let [_, next] = self.others(current, a, b);
-            tets.push(current);
-            ring.push(next);
-        }
+        let closed = self.around_edge(t, a, b, limit, |u, w| {
+            tets.push(u);
+            ring.push(w);
+        });
+        closed.then_some((tets, ring))
     }
 
     /// Calls `visit` on every vertex of the ring of edge `(a, b)` of tetrahedron `t`, in
     /// [`TetMesh::shell`] order, without allocating.
     pub fn ring(&self, t: u32, a: u32, b: u32, mut visit: impl FnMut(u32)) {
-        let [c, d] = self.others(t, a, b);
-        visit(c);
+        self.around_edge(t, a, b, self.tets.slots(), |_, w| visit(w));
+    }
+
+    /// Calls `visit(u, w)` on the tetrahedra `u = (a, b, w, w')` around edge `(a, b)` of
+    /// tetrahedron `t`, in turn from `t`; whether they closed a ring within `limit`.
+    fn around_edge(
+        &self,
+        t: u32,
+        a: u32,
+        b: u32,
+        limit: usize,
+        mut visit: impl FnMut(u32, u32),
+    ) -> bool {
         // Tetrahedron `current` is (a, b, opposite, last): across the facet opposite
         // `opposite` is (a, b, last, next).
+        let [c, d] = self.others(t, a, b);
         let (mut current, mut opposite, mut last) = (t, c, d);
-        for _ in 0..self.tets.slots() {
-            visit(last);
+        for _ in 0..limit {
+            visit(current, opposite);
             let v = self.tets.vertices(current);
             let Some(i) = v.iter().position(|&x| x == opposite) else {
-                return;
+                return false;
             };
             let g = self.tets.glued(current, i);
             current = g >> 2;
             if current == t {
-                return;
+                return true;
             }
             let next = self.tets.vertices(current)[(g & 3) as usize];
             (opposite, last) = (last, next);
         }
+        false
     }
 
     /// [`TetMesh::shell`] of an edge with exactly three tetrahedra around it (the 3-2 flip's),
@@ -442,11 +439,7 @@ impl TetMesh {
         [w0, w1, w2]: [u32; 3],
     ) -> Result<Vec<u32>> {
         // The facet of shell tetrahedron k, (a, b, w[k], w[k+1]), opposite x, glued outside.
-        let outside = |k: usize, x: u32| {
-            let v = self.tets.vertices(shell[k]);
-            let i = v.iter().position(|&y| y == x).unwrap_or(0);
-            Glue::Outer(self.tets.glued(shell[k], i))
-        };
+        let outside = |k: usize, x: u32| self.outside(shell[k], x);
         // Facet i of a new tetrahedron is opposite its vertex i.
         let gluing = [
             [
@@ -466,6 +459,14 @@ impl TetMesh {
         self.apply(&shell, &new, &gluing)
     }
 
+    /// The facet glued to the facet of `t` opposite its vertex `x`, as a gluing of a new
+    /// tetrahedron that replaces `t` on that side.
+    fn outside(&self, t: u32, x: u32) -> Glue {
+        let v = self.tets.vertices(t);
+        let i = v.iter().position(|&y| y == x).unwrap_or(0);
+        Glue::Outer(self.tets.glued(t, i))
+    }
+
     /// Removes edge `(a, b)`, with the shell and ring [`TetMesh::shell`] gave, by the
     /// triangulation `triangles` of its ring polygon (index triples `(i, k, j)`, `i < k < j`):
     /// the tetrahedra `(a, w_j, w_i, w_k)` and `(b, w_j, w_k, w_i)` of each triangle, in that
@@ -480,11 +481,7 @@ impl TetMesh {
     ) -> Result<Vec<u32>> {
         let n = ring.len();
         // The facet of shell tetrahedron m, (a, b, w_m, w_m+1), opposite x, glued outside.
-        let outside = |m: usize, x: u32| {
-            let v = self.tets.vertices(shell[m]);
-            let i = v.iter().position(|&y| y == x).unwrap_or(0);
-            Glue::Outer(self.tets.glued(shell[m], i))
-        };
+        let outside = |m: usize, x: u32| self.outside(shell[m], x);
         let mut new = Vec::with_capacity(2 * triangles.len());
         let mut gluing = Vec::with_capacity(2 * triangles.len());
         // Diagonals met once: (i, j), the triangle's first new tetrahedron, and the facets
