@@ -35,7 +35,7 @@
  * with -pY (known_more_steiner lists the shortfalls; both recover the same boundary with interior points only; with refinement the counts
  * are printed, not compared); with the bound 1.414, delmesh's tetrahedron count within 20% of
  * TetGen's -pq1.414Y where TetGen met its volume bounds and made at least 100
- * tetrahedra (known_more_tetrahedra lists the shortfalls). Where TetGen fails, delmesh still runs and is checked, without comparison.
+ * tetrahedra. Where TetGen fails, delmesh still runs and is checked, without comparison.
  *
  * TetGen's results pass the same checks (that validates the checkers), except for TetGen 1.5.0's
  * own defects with -Y, reported and not asserted: an invalid output (TetGen itself prints "BUG
@@ -192,13 +192,6 @@ static const char *const known_limits[] = {"Chazelle k=5", "Chazelle k=6", "Chaz
  * Chazelle k=2, 8 against 6 (one of its points on the surface fills the pieces of its star
  * without it, where no move fits, and the others stay as they were placed). */
 static const char *const known_more_steiner[] = {"Chazelle k=2"};
-/* Cases on which delmesh's refined mesh has more tetrahedra than TetGen -pq1.414Y's + 20%: on
- * dragknob, TetGen stops after 7 points with 404 of its 451 tetrahedra above the bound, delmesh
- * adds 7 and leaves 558 of its 608 above it (recovery leaves more interior edges than TetGen's,
- * and the 3-2 flips after refinement make a tetrahedron above the bound only with 3 or 4 surface
- * vertices). */
-static const char *const known_more_tetrahedra[] = {"dragknob"};
-
 static int listed(const char *name, const char *const *list, size_t n) {
   for (size_t i = 0; i < n; i++)
     if (strstr(name, list[i])) return 1;
@@ -372,13 +365,7 @@ static void run_case(const Case *c) {
   if (pq && out[OURS_QUALITY].ok && out[TETGEN_PQ].above_max_volume == 0 &&
       out[TETGEN_PQ].result.tet_count >= MIN_COMPARED_TETS) {
     double ratio = (double)out[OURS_QUALITY].result.tet_count / (double)out[TETGEN_PQ].result.tet_count;
-    if (fabs(ratio - 1) > TET_COUNT_SPREAD &&
-        listed(c->name, known_more_tetrahedra, sizeof known_more_tetrahedra / sizeof known_more_tetrahedra[0]))
-      check_note("%s | known shortfall (listed in known_more_tetrahedra): tetrahedra with the bound 1.414: delmesh %zu, "
-                 "TetGen -pq1.414Y %zu (ratio %.3f)",
-                 c->name, out[OURS_QUALITY].result.tet_count, out[TETGEN_PQ].result.tet_count, ratio);
-    else
-      check_case(fabs(ratio - 1) <= TET_COUNT_SPREAD,
+    check_case(fabs(ratio - 1) <= TET_COUNT_SPREAD,
                "%s | tetrahedra with the bound 1.414: delmesh %zu, TetGen -pq1.414Y %zu: ratio %.3f within 1 +- %g",
                c->name, out[OURS_QUALITY].result.tet_count, out[TETGEN_PQ].result.tet_count, ratio, TET_COUNT_SPREAD);
   }

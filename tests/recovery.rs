@@ -377,9 +377,6 @@ fn corpus_surfaces() {
     assert!(failures.is_empty(), "failed: {failures:?}");
 }
 
-/// Flips on a Delaunay tetrahedralization of random points: every 2-3 flip and edge removal
-/// that is applied leaves a valid mesh (orientation, gluing, vertex stars), and protected
-/// facets and edges survive.
 /// Uniform numbers in [0, 1) from a xorshift generator seeded with `seed`.
 fn uniform(seed: u64) -> impl FnMut() -> f64 {
     let mut state = seed;
@@ -391,13 +388,21 @@ fn uniform(seed: u64) -> impl FnMut() -> f64 {
     }
 }
 
+/// `n` points uniform in the unit cube from `seed`, and their indices (all used).
+fn random_points(seed: u64, n: u32) -> (Vec<[f64; 3]>, Vec<u32>) {
+    let mut next = uniform(seed);
+    let points = (0..n).map(|_| [next(), next(), next()]).collect();
+    (points, (0..n).collect())
+}
+
+/// Flips on a Delaunay tetrahedralization of random points: every 2-3 flip and edge removal
+/// that is applied leaves a valid mesh (orientation, gluing, vertex stars), and protected
+/// facets and edges survive.
 #[test]
 fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
     use delmesh::recovery::flips::{flip23, remove_edge, Any, Protected};
     use delmesh::recovery::tetmesh::TetMesh;
-    let mut next = uniform(0x2545_f491);
-    let points: Vec<[f64; 3]> = (0..40).map(|_| [next(), next(), next()]).collect();
-    let used: Vec<u32> = (0..40).collect();
+    let (points, used) = random_points(0x2545_f491, 40);
     let mut mesh = TetMesh::delaunay(points, &used).unwrap();
     let first = mesh.tets.live().next().unwrap();
     let mut protected = Protected::default();
@@ -443,9 +448,7 @@ fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
 fn remembered_failed_rings_change_no_removal() {
     use delmesh::recovery::flips::{remove_edge_deep, Any, Protected};
     use delmesh::recovery::tetmesh::TetMesh;
-    let mut next = uniform(0x9e37_79b9);
-    let points: Vec<[f64; 3]> = (0..60).map(|_| [next(), next(), next()]).collect();
-    let used: Vec<u32> = (0..60).collect();
+    let (points, used) = random_points(0x9e37_79b9, 60);
     let run = |forget: bool| {
         let mut mesh = TetMesh::delaunay(points.clone(), &used).unwrap();
         let protected = Protected::default();
@@ -475,6 +478,82 @@ fn remembered_failed_rings_change_no_removal() {
     assert!(kept == forgotten, "remembered failures changed the mesh");
 }
 
+/// The sum over the finite tetrahedra of their volume times the mean squared norm of their
+/// vertices: the volume under the lifted triangulation, smallest for the Delaunay one.
+fn lifted_volume(mesh: &delmesh::recovery::tetmesh::TetMesh) -> f64 {
+    mesh.tets
+        .live()
+        .map(|t| mesh.tets.vertices(t))
+        .filter(|q| !q.contains(&u32::MAX))
+        .map(|q| {
+            let p = q.map(|v| *mesh.point(v));
+            let lift: f64 = p.iter().map(|x| x.iter().map(|c| c * c).sum::<f64>()).sum();
+            volume6(p).abs() / 6.0 * lift / 4.0
+        })
+        .sum()
+}
+
+/// Removing edges toward Delaunay: never on a Delaunay mesh (no triangulation of the same
+/// points has a smaller lifted volume), and on one that shape-driven removals took away from
+/// Delaunay, each removal lowers the whole mesh's lifted volume and leaves it valid.
+#[test]
+fn non_delaunay_edge_removals_lower_the_lifted_volume_and_spare_a_delaunay_mesh() {
+    use delmesh::recovery::flips::{remove_edge, remove_non_delaunay_edge, Any, Protected};
+    use delmesh::recovery::tetmesh::TetMesh;
+    let (points, used) = random_points(0x5eed_1e55, 80);
+    let mut mesh = TetMesh::delaunay(points, &used).unwrap();
+    let protected = Protected::default();
+    let edges = |mesh: &TetMesh| -> Vec<(u32, [u32; 2])> {
+        let mut all = Vec::new();
+        for t in mesh.tets.live() {
+            let v = mesh.tets.vertices(t);
+            for (i, j) in [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)] {
+                if v[i] != u32::MAX && v[j] != u32::MAX {
+                    all.push((t, [v[i], v[j]]));
+                }
+            }
+        }
+        all
+    };
+    let delaunay = lifted_volume(&mesh);
+    for (t, e) in edges(&mesh) {
+        let removed = remove_non_delaunay_edge(&mut mesh, &protected, t, e).unwrap();
+        assert!(removed.is_none(), "edge {e:?} of a Delaunay mesh removed");
+    }
+    for round in 0..300usize {
+        let all = edges(&mesh);
+        let (_, e) = all[(round * 7919) % all.len()];
+        remove_edge(&mut mesh, &protected, e, &Any).unwrap();
+    }
+    mesh.validate().unwrap();
+    let scrambled = lifted_volume(&mesh);
+    assert!(scrambled > delaunay, "{scrambled} {delaunay}");
+    let (mut removals, mut lifted) = (0, scrambled);
+    loop {
+        let before = removals;
+        for (t, e) in edges(&mesh) {
+            if !mesh.tets.is_live(t) || !e.iter().all(|v| mesh.tets.vertices(t).contains(v)) {
+                continue;
+            }
+            if remove_non_delaunay_edge(&mut mesh, &protected, t, e)
+                .unwrap()
+                .is_some()
+            {
+                removals += 1;
+                mesh.validate().unwrap();
+                let now = lifted_volume(&mesh);
+                assert!(now < lifted, "removing {e:?}: {now} >= {lifted}");
+                lifted = now;
+            }
+        }
+        if removals == before {
+            break;
+        }
+    }
+    assert!(removals > 10, "{removals} removals");
+    println!("lifted volume: Delaunay {delaunay}, scrambled {scrambled}, after {removals} removals {lifted}");
+}
+
 /// Flips and edge removals under the rule of guarded unblocking (`edges::Clear`: no new
 /// facet whose interior the segment crosses) never add a facet that the segment crosses.
 #[test]
@@ -496,9 +575,7 @@ fn guarded_flips_create_no_facet_the_segment_crosses() {
         }
         found
     };
-    let mut next = uniform(0x51_7cc1);
-    let points: Vec<[f64; 3]> = (0..40).map(|_| [next(), next(), next()]).collect();
-    let used: Vec<u32> = (0..40).collect();
+    let (points, used) = random_points(0x51_7cc1, 40);
     let mut mesh = TetMesh::delaunay(points, &used).unwrap();
     let protected = Protected::default();
     let segment = [3, 17];
@@ -543,9 +620,7 @@ fn an_interior_point_recovers_edges_through_a_shell() {
             .map(|v| volume6(v.map(|x| *mesh.point(x))))
             .sum()
     };
-    let mut next = uniform(0x1f2e_3d4c);
-    let points: Vec<[f64; 3]> = (0..30).map(|_| [next(), next(), next()]).collect();
-    let used: Vec<u32> = (0..30).collect();
+    let (points, used) = random_points(0x1f2e_3d4c, 30);
     let mut mesh = TetMesh::delaunay(points, &used).unwrap();
     let protected = Protected::default();
     let whole = volume(&mesh);
@@ -603,9 +678,7 @@ fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
             })
             .fold(f64::INFINITY, f64::min)
     };
-    let mut next = uniform(0x3_2f11);
-    let points: Vec<[f64; 3]> = (0..200).map(|_| [next(), next(), next()]).collect();
-    let used: Vec<u32> = (0..200).collect();
+    let (points, used) = random_points(0x3_2f11, 200);
     let mut mesh = TetMesh::delaunay(points, &used).unwrap();
     let mut protected = Protected::default();
     for t in mesh.tets.live().step_by(5).collect::<Vec<_>>() {
@@ -656,9 +729,7 @@ fn improving_32_flips_leave_tetrahedra_above_the_bound_only_on_the_surface() {
             })
             .collect()
     };
-    let mut next = uniform(0x3_2f12);
-    let points: Vec<[f64; 3]> = (0..200).map(|_| [next(), next(), next()]).collect();
-    let used: Vec<u32> = (0..200).collect();
+    let (points, used) = random_points(0x3_2f12, 200);
     let ratio = |mesh: &TetMesh, q: [u32; 4]| radius_edge(q.map(|v| *mesh.point(v)));
     let mut counts = Vec::new();
     let first_half: Vec<bool> = (0..200).map(|v| v < 100).collect();

@@ -15,6 +15,7 @@ use rustc_hash::FxHashSet;
 use super::tetmesh::{key, Key, TetMesh};
 use crate::error::Result;
 use crate::geometry::{dist2, tet_volume};
+use crate::predicates::Point;
 use crate::quality::radius_edge;
 use crate::triangulation::tets::INFINITE;
 
@@ -163,7 +164,8 @@ fn remove_shell(
     if memo.is_some_and(|k| mesh.failed_rings.contains(&k)) {
         return Ok(false);
     }
-    let Some(triangles) = best_ring_triangulation(mesh, [a, b], ring, allowed) else {
+    let Some((triangles, _)) = best_ring_triangulation(mesh, [a, b], ring, allowed, Goal::Shape)
+    else {
         if let Some(k) = memo {
             mesh.failed_rings.insert(k);
         }
@@ -304,21 +306,71 @@ pub fn remove_edge_deep(
     }
 }
 
+/// What the triangulation of a ring optimizes ([`best_ring_triangulation`]).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Goal {
+    /// The largest smallest shape of the new tetrahedra.
+    Shape,
+    /// The smallest sum of their lifted volumes ([`lifted_volume`], taken from the edge's
+    /// first vertex): the most Delaunay.
+    Delaunay,
+}
+
+impl Goal {
+    /// The score of no tetrahedron (a side of the ring).
+    fn empty(self) -> f64 {
+        match self {
+            Goal::Shape => f64::INFINITY,
+            Goal::Delaunay => 0.0,
+        }
+    }
+
+    /// The score of the two new tetrahedra of a triangle, larger is better: never above
+    /// [`Goal::empty`], so that joining scores never raises them.
+    fn pair(self, mesh: &TetMesh, ta: [u32; 4], tb: [u32; 4]) -> f64 {
+        match self {
+            Goal::Shape => shape(mesh, ta).min(shape(mesh, tb)),
+            Goal::Delaunay => {
+                let origin = mesh.point(ta[0]);
+                -(lifted_volume(mesh, origin, ta) + lifted_volume(mesh, origin, tb))
+            }
+        }
+    }
+
+    fn join(self, x: f64, y: f64) -> f64 {
+        match self {
+            Goal::Shape => x.min(y),
+            Goal::Delaunay => x + y,
+        }
+    }
+}
+
+/// The volume between tetrahedron `q` and its lift onto the paraboloid `|x - origin|^2`: its
+/// volume times the mean of its vertices' lifts (TetGen's "tetprism volume"). Among the
+/// triangulations of a region with the same vertices, the Delaunay one has the smallest sum;
+/// differences of sums do not depend on `origin`.
+fn lifted_volume(mesh: &TetMesh, origin: &Point, q: [u32; 4]) -> f64 {
+    let p = q.map(|v| mesh.point(v));
+    let lift: f64 = p.iter().map(|x| dist2(x, origin)).sum();
+    tet_volume(p).abs() * lift / 4.0
+}
+
 /// The triangles `(i, k, j)`, `i < k < j`, of the triangulation of the ring polygon that
-/// maximizes the smallest shape of the new tetrahedra `(a, w_j, w_i, w_k)` and
-/// `(b, w_j, w_k, w_i)`, all of which must be positive; `None` if there is none.
+/// gives the new tetrahedra `(a, w_j, w_i, w_k)` and `(b, w_j, w_k, w_i)` the best `goal`
+/// score, all of them positive, and that score; `None` if there is none.
 fn best_ring_triangulation(
     mesh: &TetMesh,
     [a, b]: [u32; 2],
     ring: &[u32],
     allowed: &dyn Rule,
-) -> Option<Vec<[usize; 3]>> {
+    goal: Goal,
+) -> Option<(Vec<[usize; 3]>, f64)> {
     let n = ring.len();
-    // best[i * n + j]: the best worst shape over triangulations of the sub-polygon i..=j, and
-    // the apex k of the triangle on side (i, j). Sized to the ring (most rings are short).
+    // best[i * n + j]: the best score over triangulations of the sub-polygon i..=j, and the
+    // apex k of the triangle on side (i, j). Sized to the ring (most rings are short).
     let mut best = vec![(f64::NEG_INFINITY, usize::MAX); n * n];
     for i in 0..n - 1 {
-        best[i * n + i + 1] = (f64::INFINITY, usize::MAX);
+        best[i * n + i + 1] = (goal.empty(), usize::MAX);
     }
     let side = |i: usize, j: usize| j == i + 1 || (i == 0 && j == n - 1);
     // A diagonal (u, w) brings the edge and the facets (a, u, w) and (b, u, w).
@@ -332,8 +384,9 @@ fn best_ring_triangulation(
                 continue;
             }
             for k in i + 1..j {
-                let worst = best[i * n + k].0.min(best[k * n + j].0);
-                if worst <= best[i * n + j].0 {
+                // The triangle's score can only lower this bound.
+                let bound = goal.join(best[i * n + k].0, best[k * n + j].0);
+                if bound <= best[i * n + j].0 {
                     continue;
                 }
                 let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
@@ -341,14 +394,15 @@ fn best_ring_triangulation(
                 if !mesh.positive(ta) || !mesh.positive(tb) || !allowed.facet(mesh, [wi, wk, wj]) {
                     continue;
                 }
-                let q = worst.min(shape(mesh, ta)).min(shape(mesh, tb));
+                let q = goal.join(bound, goal.pair(mesh, ta, tb));
                 if q > best[i * n + j].0 {
                     best[i * n + j] = (q, k);
                 }
             }
         }
     }
-    if best[n - 1].1 == usize::MAX {
+    let (score, apex) = best[n - 1];
+    if apex == usize::MAX {
         return None;
     }
     let mut triangles = Vec::with_capacity(n - 2);
@@ -361,7 +415,58 @@ fn best_ring_triangulation(
             stack.push((k, j));
         }
     }
-    Some(triangles)
+    Some((triangles, score))
+}
+
+/// Longest shell [`remove_non_delaunay_edge`] looks at (TetGen's star size for its recovery
+/// of the Delaunay property).
+const MAX_DELAUNAY_SHELL: usize = 10;
+
+/// Removes the unprotected edge `(a, b)` of tetrahedron `t` when the most Delaunay
+/// triangulation of its shell (two fans over a triangulation of the ring) has a smaller sum
+/// of lifted volumes ([`lifted_volume`]) than the shell, by more than rounding can account
+/// for (TetGen's recovery of the Delaunay property by edge removal): that sum over the whole
+/// mesh decreases at every removal, so removals cannot cycle. Returns the new tetrahedra;
+/// `None`, changing nothing, when the edge or a facet around it is protected, the shell is
+/// infinite or longer than [`MAX_DELAUNAY_SHELL`], or no triangulation lowers the sum.
+pub fn remove_non_delaunay_edge(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    t: u32,
+    [a, b]: [u32; 2],
+) -> Result<Option<Vec<u32>>> {
+    if protected.edge(a, b) {
+        return Ok(None);
+    }
+    let Some((shell, ring)) = mesh.shell(t, a, b, MAX_DELAUNAY_SHELL) else {
+        return Ok(None);
+    };
+    if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
+        return Ok(None);
+    }
+    let origin = mesh.point(a);
+    let before: f64 = shell
+        .iter()
+        .map(|&u| lifted_volume(mesh, origin, mesh.tets.vertices(u)))
+        .sum();
+    // Each tetrahedron's volume is off by at most a few units in the last place of the cube
+    // of the shell's reach, its lift by as many of the reach's square.
+    let reach2 = ring
+        .iter()
+        .chain([&b])
+        .map(|&w| dist2(mesh.point(w), origin))
+        .fold(0.0, f64::max);
+    let rounding = 1e-12 * (2 * shell.len()) as f64 * reach2 * reach2 * reach2.sqrt();
+    let Some((triangles, score)) =
+        best_ring_triangulation(mesh, [a, b], &ring, &Any, Goal::Delaunay)
+    else {
+        return Ok(None);
+    };
+    if -score >= before - rounding {
+        return Ok(None);
+    }
+    mesh.remove_edge_by_ring([a, b], (&shell, &ring), &triangles)
+        .map(Some)
 }
 
 /// The shape below which [`improve_by_32_flips`] tries to flip an edge of a tetrahedron: half
