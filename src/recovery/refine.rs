@@ -565,24 +565,7 @@ impl Refiner<'_> {
             self.wait(&mut stack, t);
         }
         loop {
-            while let Some((t, quad)) = stack.pop() {
-                if !self.mesh.tets.is_live(t) || self.mesh.tets.vertices(t) != quad {
-                    continue;
-                }
-                self.mesh.tets.mark[t as usize] = 0;
-                for i in 0..4 {
-                    if self.flips_left == 0 {
-                        break;
-                    }
-                    if self.mesh.tets.mark[self.mesh.tets.neighbor(t, i) as usize] == WAITING {
-                        continue;
-                    }
-                    if let Some(created) = self.flip_if_not_delaunay(t, i)? {
-                        self.flipped(t, &created, &mut stack, &mut touched);
-                        break;
-                    }
-                }
-            }
+            self.flip_waiting(&mut stack, &mut touched)?;
             // Then an edge of a facet no 2-3 or 3-2 flip could remove, where removing it
             // makes its shell more Delaunay, and Lawson's flips around the new tetrahedra.
             if mode == Lawson::FlipsOnly || self.flips_left == 0 {
@@ -608,6 +591,34 @@ impl Refiner<'_> {
         touched.dedup();
         touched.retain(|&t| self.mesh.tets.is_live(t));
         Ok(touched)
+    }
+
+    /// Lawson's flips of the facets of the tetrahedra on `stack` (and of those the flips
+    /// make) until none is left; the new tetrahedra are added to `touched`.
+    fn flip_waiting(
+        &mut self,
+        stack: &mut Vec<(u32, [u32; 4])>,
+        touched: &mut Vec<u32>,
+    ) -> Result<()> {
+        while let Some((t, quad)) = stack.pop() {
+            if !self.mesh.tets.is_live(t) || self.mesh.tets.vertices(t) != quad {
+                continue;
+            }
+            self.mesh.tets.mark[t as usize] = 0;
+            for i in 0..4 {
+                if self.flips_left == 0 {
+                    break;
+                }
+                if self.mesh.tets.mark[self.mesh.tets.neighbor(t, i) as usize] == WAITING {
+                    continue;
+                }
+                if let Some(created) = self.flip_if_not_delaunay(t, i)? {
+                    self.flipped(t, &created, stack, touched);
+                    break;
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Counts a flip that replaced `t` (and others of its region) by `created`, which go on
