@@ -5,7 +5,8 @@
 //! 3-2 flip and `n = 4` the 4-4 flip).
 //!
 //! [`improve_by_32_flips`] applies 3-2 flips that raise the worst shape, after refinement,
-//! within a radius-edge [`Bound`].
+//! within a radius-edge [`Bound`]; [`remove_non_delaunay_edge`] removes an edge where the
+//! most Delaunay triangulation of its shell lowers the lifted volume (before refinement).
 //!
 //! A flip never destroys a protected edge or facet ([`Protected`]: the input surface) and is
 //! applied only when every new tetrahedron is positively oriented (exact).
