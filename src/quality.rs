@@ -116,6 +116,11 @@ pub fn min_dihedral(p: [P; 4]) -> f64 {
 /// lengths throughout and one square root (refinement measures every tetrahedron it makes).
 pub fn radius_edge(p: [P; 4]) -> f64 {
     let (u, v, w) = edges_from_first(&p);
+    ratio_from(circumradius2(u, v, w), u, v, w)
+}
+
+/// The radius-edge ratio from the squared circumradius and the edges from the first vertex.
+fn ratio_from(circumradius2: f64, u: P, v: P, w: P) -> f64 {
     let shortest2 = [
         dot(&u, &u),
         dot(&v, &v),
@@ -126,7 +131,7 @@ pub fn radius_edge(p: [P; 4]) -> f64 {
     ]
     .into_iter()
     .fold(f64::INFINITY, f64::min);
-    ratio_or_infinite((circumradius2(u, v, w) / shortest2).sqrt())
+    ratio_or_infinite((circumradius2 / shortest2).sqrt())
 }
 
 /// The length of the shortest edge of the tetrahedron `p`.
@@ -135,11 +140,6 @@ pub fn shortest_edge(p: &[P; 4]) -> f64 {
         .flat_map(|i| (i + 1..4).map(move |j| (i, j)))
         .map(|(i, j)| norm(&sub(&p[i], &p[j])))
         .fold(f64::INFINITY, f64::min)
-}
-
-fn circumradius(p: &[P; 4]) -> f64 {
-    let (u, v, w) = edges_from_first(p);
-    circumradius2(u, v, w).sqrt()
 }
 
 /// The edges `u`, `v`, `w` from `p[0]` to the other vertices.
@@ -175,13 +175,15 @@ pub fn tetrahedron(p: [P; 4]) -> TetQuality {
     let corners = [&p[0], &p[1], &p[2], &p[3]];
     let volume = tet_volume(corners).abs();
     let area: f64 = n.iter().map(|v| 0.5 * norm(v)).sum();
-    let circumradius = circumradius(&p);
+    let (u, v, w) = edges_from_first(&p);
+    let circumradius2 = circumradius2(u, v, w);
+    let circumradius = circumradius2.sqrt();
     let inradius = 3.0 * volume / area;
     let ratio = 3.0 * inradius / circumradius;
     TetQuality {
         min_dihedral,
         max_dihedral,
-        radius_edge: radius_edge(p),
+        radius_edge: ratio_from(circumradius2, u, v, w),
         radius_ratio: if ratio.is_finite() {
             ratio.clamp(0.0, 1.0)
         } else {

@@ -48,6 +48,12 @@ impl Protected {
     pub fn facet(&self, f: [u32; 3]) -> bool {
         self.facets.contains(&key(f))
     }
+
+    /// Whether the shell of the unprotected edge `(a, b)` with ring `ring` may be replaced:
+    /// it is finite and none of its facets `(a, b, w)`, which vanish, is protected.
+    fn shell_may_go(&self, [a, b]: [u32; 2], ring: &[u32]) -> bool {
+        !ring.contains(&INFINITE) && !ring.iter().any(|&w| self.facet([a, b, w]))
+    }
 }
 
 /// What a flip may create: every new edge `(u, w)` is asked first, then every new facet
@@ -156,7 +162,7 @@ fn remove_shell(
     (shell, ring): (&[u32], &[u32]),
     allowed: &dyn Rule,
 ) -> Result<bool> {
-    if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
+    if !protected.shell_may_go([a, b], ring) {
         return Ok(false);
     }
     let memo = allowed
@@ -442,7 +448,7 @@ pub fn remove_non_delaunay_edge(
     let Some((shell, ring)) = mesh.shell(t, a, b, MAX_DELAUNAY_SHELL) else {
         return Ok(None);
     };
-    if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
+    if !protected.shell_may_go([a, b], &ring) {
         return Ok(None);
     }
     let origin = mesh.point(a);
@@ -579,7 +585,7 @@ pub fn flip32(
     let Some((shell, ring)) = mesh.shell3(t, a, b) else {
         return Ok(None);
     };
-    if ring.contains(&INFINITE) || ring.iter().any(|&w| protected.facet([a, b, w])) {
+    if !protected.shell_may_go([a, b], &ring) {
         return Ok(None);
     }
     let [w0, w1, w2] = ring;

@@ -565,10 +565,10 @@ impl Refiner<'_> {
             self.wait(&mut stack, t);
         }
         loop {
-            self.flip_waiting(&mut stack, &mut touched)?;
+            self.flip_waiting(&mut stack, &mut touched, mode)?;
             // Then an edge of a facet no 2-3 or 3-2 flip could remove, where removing it
             // makes its shell more Delaunay, and Lawson's flips around the new tetrahedra.
-            if mode == Lawson::FlipsOnly || self.flips_left == 0 {
+            if self.flips_left == 0 {
                 self.unflipped.clear();
                 break;
             }
@@ -594,11 +594,14 @@ impl Refiner<'_> {
     }
 
     /// Lawson's flips of the facets of the tetrahedra on `stack` (and of those the flips
-    /// make) until none is left; the new tetrahedra are added to `touched`.
+    /// make) until none is left; the new tetrahedra are added to `touched`. With
+    /// [`Lawson::RemovingEdges`], the edges of the facets no flip removes are noted in
+    /// `unflipped`.
     fn flip_waiting(
         &mut self,
         stack: &mut Vec<(u32, [u32; 4])>,
         touched: &mut Vec<u32>,
+        mode: Lawson,
     ) -> Result<()> {
         while let Some((t, quad)) = stack.pop() {
             if !self.mesh.tets.is_live(t) || self.mesh.tets.vertices(t) != quad {
@@ -612,7 +615,7 @@ impl Refiner<'_> {
                 if self.mesh.tets.mark[self.mesh.tets.neighbor(t, i) as usize] == WAITING {
                     continue;
                 }
-                if let Some(created) = self.flip_if_not_delaunay(t, i)? {
+                if let Some(created) = self.flip_if_not_delaunay(t, i, mode)? {
                     self.flipped(t, &created, stack, touched);
                     break;
                 }
@@ -647,8 +650,9 @@ impl Refiner<'_> {
 
     /// Flips facet `i` of `t` away (2-3, or 3-2 around one of its edges) when the apex
     /// across it is strictly inside `t`'s circumsphere and a flip gives positive
-    /// tetrahedra; returns the new tetrahedra.
-    fn flip_if_not_delaunay(&mut self, t: u32, i: usize) -> Result<Option<Vec<u32>>> {
+    /// tetrahedra; returns the new tetrahedra. Where no flip does, with
+    /// [`Lawson::RemovingEdges`], the facet's edges are noted in `unflipped`.
+    fn flip_if_not_delaunay(&mut self, t: u32, i: usize, mode: Lawson) -> Result<Option<Vec<u32>>> {
         let (d, [x, y, z]) = self.mesh.with_apex(t, i);
         let n = self.mesh.tets.neighbor(t, i);
         if self.regions.on_surface(t, i) || !self.regions.kept(n) {
@@ -674,9 +678,11 @@ impl Refiner<'_> {
                 return Ok(Some(created));
             }
         }
-        let quad = self.mesh.tets.vertices(t);
-        for edge in [[x, y], [y, z], [z, x]] {
-            self.unflipped.push((t, quad, edge));
+        if mode == Lawson::RemovingEdges {
+            let quad = self.mesh.tets.vertices(t);
+            for edge in [[x, y], [y, z], [z, x]] {
+                self.unflipped.push((t, quad, edge));
+            }
         }
         Ok(None)
     }
