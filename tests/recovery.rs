@@ -407,14 +407,7 @@ fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
     let first = mesh.tets.live().next().unwrap();
     let mut protected = Protected::default();
     let kept = mesh.facet(first, 0);
-    protected.facets.insert({
-        let mut k = kept;
-        k.sort_unstable();
-        k
-    });
-    protected
-        .edges
-        .insert([kept[0].min(kept[1]), kept[0].max(kept[1])]);
+    protected.insert_facet(kept);
     let (mut flipped, mut removed) = (0, 0);
     for round in 0..200u32 {
         let live: Vec<u32> = mesh.tets.live().collect();
@@ -656,7 +649,7 @@ fn an_interior_point_recovers_edges_through_a_shell() {
 #[test]
 fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
     use delmesh::recovery::flips::{improve_by_32_flips, Bound, Protected};
-    use delmesh::recovery::tetmesh::{key, TetMesh};
+    use delmesh::recovery::tetmesh::TetMesh;
     let finite = |mesh: &TetMesh| -> Vec<[[f64; 3]; 4]> {
         mesh.tets
             .live()
@@ -684,10 +677,7 @@ fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
     for t in mesh.tets.live().step_by(5).collect::<Vec<_>>() {
         let f = mesh.facet(t, 0);
         if !f.contains(&u32::MAX) {
-            protected.facets.insert(key(f));
-            for (a, b) in [(f[0], f[1]), (f[1], f[2]), (f[2], f[0])] {
-                protected.edges.insert([a.min(b), a.max(b)]);
-            }
+            protected.insert_facet(f);
         }
     }
     let before = finite(&mesh);
@@ -781,9 +771,7 @@ fn interior_points_are_merged_or_refilled_away() {
         mesh.tets.vertices(t).iter().position(|&v| v != 8).unwrap(),
     );
     let mut protected = Protected::default();
-    let mut k = kept;
-    k.sort_unstable();
-    protected.facets.insert(k);
+    protected.insert_facet(kept);
     merge_interior(&mut mesh, &protected, 8).unwrap();
     mesh.validate().unwrap();
     assert!(

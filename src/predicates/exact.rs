@@ -182,7 +182,8 @@ fn fixed_integers<const N: usize>(coordinates: [f64; N]) -> Option<[i64; N]> {
     if highest - lowest > 61 {
         return None;
     }
-    Some(parts.map(|(odd, low)| odd << (low - lowest)))
+    // Zeros kept their (0, 0): no shift, which `low - lowest` could make negative.
+    Some(parts.map(|(odd, low)| if odd == 0 { 0 } else { odd << (low - lowest) }))
 }
 
 /// `a b` in `i128`, for `|a|, |b| < 2^63`.

@@ -12,6 +12,7 @@
 //! applied only when every new tetrahedron is positively oriented (exact).
 
 use rustc_hash::FxHashSet;
+use smallvec::SmallVec;
 
 use super::tetmesh::{key, Key, TetMesh};
 use crate::error::Result;
@@ -24,13 +25,23 @@ use crate::triangulation::tets::INFINITE;
 const MAX_SHELL: usize = 24;
 
 /// The edges and facets no flip may destroy.
-#[derive(Default)]
+#[derive(Clone, Default)]
 pub struct Protected {
     pub edges: FxHashSet<[u32; 2]>,
     pub facets: FxHashSet<Key>,
 }
 
 impl Protected {
+    /// Protects facet `f` with its sides: the sides of a protected facet are protected
+    /// edges ([`Protected::shell_may_go`] relies on it).
+    pub fn insert_facet(&mut self, f: [u32; 3]) {
+        self.facets.insert(key(f));
+        for k in 0..3 {
+            let (a, b) = (f[k], f[(k + 1) % 3]);
+            self.edges.insert([a.min(b), a.max(b)]);
+        }
+    }
+
     pub fn edge(&self, a: u32, b: u32) -> bool {
         self.edges.contains(&[a.min(b), a.max(b)])
     }
@@ -50,9 +61,12 @@ impl Protected {
     }
 
     /// Whether the shell of the unprotected edge `(a, b)` with ring `ring` may be replaced:
-    /// it is finite and none of its facets `(a, b, w)`, which vanish, is protected.
+    /// it is finite. None of its facets `(a, b, w)`, which vanish, is protected: the sides
+    /// of a protected facet are protected edges ([`Protected::insert_facet`]; the partition
+    /// drops an edge only once no subface has it).
     fn shell_may_go(&self, [a, b]: [u32; 2], ring: &[u32]) -> bool {
-        !ring.contains(&INFINITE) && !ring.iter().any(|&w| self.facet([a, b, w]))
+        debug_assert!(!self.edge(a, b) && !ring.iter().any(|&w| self.facet([a, b, w])));
+        !ring.contains(&INFINITE)
     }
 }
 
@@ -276,7 +290,8 @@ pub fn remove_edge_deep(
             return Ok(false);
         }
         let mut shrunk = false;
-        let quads: Vec<[u32; 4]> = shell.iter().map(|&u| mesh.tets.vertices(u)).collect();
+        let quads: SmallVec<[[u32; 4]; 16]> =
+            shell.iter().map(|&u| mesh.tets.vertices(u)).collect();
         for (i, &s) in shell.iter().enumerate() {
             if shell
                 .iter()

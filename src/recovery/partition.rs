@@ -30,6 +30,7 @@ pub enum Host {
     Face(usize),
 }
 
+#[derive(Clone)]
 pub struct Partition {
     /// The input triangles.
     input: Vec<[u32; 3]>,
@@ -89,10 +90,7 @@ impl Partition {
     }
 
     fn protect(&mut self, f: [u32; 3]) {
-        self.protected.facets.insert(key(f));
-        for e in sides(f) {
-            self.protected.edges.insert(e);
-        }
+        self.protected.insert_facet(f);
     }
 
     /// Drops subface `f` from the protected set, and those of its edges no other subface

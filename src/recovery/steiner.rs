@@ -91,7 +91,8 @@ fn holding(mesh: &TetMesh, part: &Partition, t: u32, p: &Point) -> Option<Vec<u3
             if part.protected.edge(x, y) {
                 return None;
             }
-            mesh.shell(at, x, y, usize::MAX).map(|(shell, _)| shell)
+            mesh.shell(at, x, y, usize::MAX)
+                .map(|(shell, _)| shell.to_vec())
         }
         _ => None,
     }
@@ -184,7 +185,10 @@ pub fn split_subedge(
             let Some((shell, _)) = mesh.shell(t, x, y, usize::MAX) else {
                 return Err(Error::internal("open shell"));
             };
-            (shell, line_line(&pp, &pq, mesh.point(x), mesh.point(y)))
+            (
+                shell.to_vec(),
+                line_line(&pp, &pq, mesh.point(x), mesh.point(y)),
+            )
         }
         Crossing::Vertex(v) => return Err(super::edges::vertex_on_edge(mesh, v, [p, q])),
     };

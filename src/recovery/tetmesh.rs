@@ -13,6 +13,7 @@
 //! when a point moves or its number is given back).
 
 use rustc_hash::FxHashSet;
+use smallvec::SmallVec;
 
 use super::by_vertex::ByVertex;
 use super::flips::{FailedRings, Protected};
@@ -21,6 +22,10 @@ use crate::predicates::{orient3d, Point, Sign};
 use crate::triangulation::edge_table::EdgeTable;
 use crate::triangulation::tets::{Tets, FACE, INFINITE};
 use crate::triangulation::Triangulation;
+
+/// The tetrahedra or the ring vertices of an edge's shell: most have at most 16, kept
+/// without allocating (edge removal looks at shells by the thousand).
+pub type Shell = SmallVec<[u32; 16]>;
 
 /// No tetrahedron (a vertex not in the mesh).
 pub const NONE: u32 = u32::MAX;
@@ -48,7 +53,6 @@ pub fn key([a, b, c]: [u32; 3]) -> Key {
     [a, b, c]
 }
 
-#[derive(Clone)]
 pub struct TetMesh {
     /// Moved only by [`TetMesh::move_point`].
     pub points: Vec<Point>,
@@ -64,6 +68,23 @@ pub struct TetMesh {
     changed: bool,
     /// Edge removals known to fail while no point moves.
     pub failed_rings: FailedRings,
+}
+
+/// A copy without the scratch tables and with no failed ring remembered: those are only
+/// looked up again, the copy meshes as the original would.
+impl Clone for TetMesh {
+    fn clone(&self) -> Self {
+        TetMesh {
+            points: self.points.clone(),
+            tets: self.tets.clone(),
+            vertex_tet: self.vertex_tet.clone(),
+            scratch: Vec::new(),
+            edges: EdgeTable::default(),
+            first_added: self.first_added,
+            changed: self.changed,
+            failed_rings: FailedRings::default(),
+        }
+    }
 }
 
 impl TetMesh {
@@ -364,9 +385,8 @@ impl TetMesh {
     /// The tetrahedra around edge `(a, b)` of tetrahedron `t`, and the ring `w` of their other
     /// vertices: tetrahedron `k` is `(a, b, w[k], w[k+1])`, positively oriented (indices mod
     /// the ring length). `None` if the ring is not closed within `limit` steps.
-    pub fn shell(&self, t: u32, a: u32, b: u32, limit: usize) -> Option<(Vec<u32>, Vec<u32>)> {
-        // Shells are short: one allocation each, not one per doubling.
-        let (mut tets, mut ring) = (Vec::with_capacity(16), Vec::with_capacity(16));
+    pub fn shell(&self, t: u32, a: u32, b: u32, limit: usize) -> Option<(Shell, Shell)> {
+        let (mut tets, mut ring) = (Shell::new(), Shell::new());
         let closed = self.around_edge(t, a, b, limit, |u, w| {
             tets.push(u);
             ring.push(w);
