@@ -16,7 +16,6 @@ pub fn vertex_count(triangles: &[[u32; 3]]) -> usize {
 
 /// Items grouped by a vertex: the items of vertex `a` are `items[start[a]..start[a + 1]]`
 /// (a counting sort); vertices out of range (the infinite vertex) have none.
-#[derive(Clone)]
 pub struct ByVertex<T> {
     start: Vec<u32>,
     pub items: Vec<T>,

@@ -25,7 +25,7 @@ use crate::triangulation::tets::INFINITE;
 const MAX_SHELL: usize = 24;
 
 /// The edges and facets no flip may destroy.
-#[derive(Clone, Default)]
+#[derive(Default)]
 pub struct Protected {
     pub edges: FxHashSet<[u32; 2]>,
     pub facets: FxHashSet<Key>,

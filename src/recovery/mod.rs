@@ -236,11 +236,11 @@ impl IntersectionCheck<'_> {
 /// they can before any point is added ([`Progress::by_flips`]). Where points are needed
 /// (and an attempt may fail), a copy is kept for the next attempts: on anchor, this start
 /// took 0.39 s of each attempt's 1 s.
+/// The partition is not kept: no point is added before, so it is `Partition::new`'s.
 #[derive(Clone)]
 struct Start {
     shrink: bool,
     mesh: TetMesh,
-    part: Partition,
     /// `None` when every subface was a facet of the Delaunay triangulation.
     progress: Option<(Progress, Missing)>,
 }
@@ -264,7 +264,6 @@ impl Start {
         Ok(Start {
             shrink,
             mesh,
-            part,
             progress,
         })
     }
@@ -316,11 +315,9 @@ fn mesh_surface(
         bounding.extend(hull::triangles(points, tris, &vertices)?);
     }
     let Start {
-        mut mesh,
-        mut part,
-        progress,
-        ..
+        mut mesh, progress, ..
     } = Start::of(starts, attempt, points, &bounding, &isolated)?;
+    let mut part = Partition::new(&bounding);
     // Two points per triangle, far more than any input that meshes needs (26 for 980
     // triangles at most in the C test), so that an attempt that goes astray stops soon.
     // The attempts with points inside first follow a failure: a quarter as many points as
@@ -348,6 +345,11 @@ fn mesh_surface(
     }
     let normals: Vec<Point> = bounding.iter().map(|f| unit_normal(points, *f)).collect();
     suppress::suppress_all(&mut mesh, &mut part, &normals, tris.len())?;
+    // The copies serve attempts after a failed recovery; past it, they are freed before
+    // refinement, which takes the most memory (an attempt after a failure there would make
+    // its start anew).
+    starts.clear();
+    starts.shrink_to_fit();
     suppress::merge_interior(&mut mesh, &part.protected, points.len() as u32 + 8)?;
     suppress::relocate_interior(&mut mesh, &part, points.len() as u32 + 8);
     // The hull's triangles are in pieces where points stayed on them.

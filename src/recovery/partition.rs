@@ -30,7 +30,6 @@ pub enum Host {
     Face(usize),
 }
 
-#[derive(Clone)]
 pub struct Partition {
     /// The input triangles.
     input: Vec<[u32; 3]>,
