@@ -235,8 +235,8 @@ impl IntersectionCheck<'_> {
 /// triangulation of the surface's vertices in its box, and the flips that recover what
 /// they can before any point is added ([`Progress::by_flips`]). Where points are needed
 /// (and an attempt may fail), a copy is kept for the next attempts: on anchor, this start
-/// took 0.39 s of each attempt's 1 s.
-/// The partition is not kept: no point is added before, so it is `Partition::new`'s.
+/// took 0.39 s of each attempt's 1 s. The partition is not kept: no point is added before,
+/// so it is [`Partition::new`]'s.
 #[derive(Clone)]
 struct Start {
     shrink: bool,
@@ -251,7 +251,7 @@ impl Start {
         bounding: &[[u32; 3]],
         isolated: &[u32],
         shrink: bool,
-    ) -> Result<Self> {
+    ) -> Result<(Self, Partition)> {
         let mut mesh = enclosed_delaunay(points, bounding, isolated)?;
         let part = Partition::new(bounding);
         let progress = match Progress::start(&mut mesh, &part) {
@@ -261,11 +261,12 @@ impl Start {
             }
             None => None,
         };
-        Ok(Start {
+        let start = Start {
             shrink,
             mesh,
             progress,
-        })
+        };
+        Ok((start, part))
     }
 
     /// Whether the next step adds a point.
@@ -273,23 +274,23 @@ impl Start {
         !matches!(self.progress, None | Some((_, Missing::Nothing)))
     }
 
-    /// The start of `attempt`: a copy of the one `starts` keeps, else a new one, kept
-    /// when it needs points.
+    /// The start of `attempt` and its partition: a copy of the one `starts` keeps, else a
+    /// new one, kept when it needs points.
     fn of(
         starts: &mut Vec<Start>,
         attempt: Attempt,
         points: &[Point],
         bounding: &[[u32; 3]],
         isolated: &[u32],
-    ) -> Result<Self> {
+    ) -> Result<(Self, Partition)> {
         if let Some(s) = starts.iter().find(|s| s.shrink == attempt.shrink) {
-            return Ok(s.clone());
+            return Ok((s.clone(), Partition::new(bounding)));
         }
-        let s = Start::new(points, bounding, isolated, attempt.shrink)?;
+        let (s, part) = Start::new(points, bounding, isolated, attempt.shrink)?;
         if s.needs_points() {
             starts.push(s.clone());
         }
-        Ok(s)
+        Ok((s, part))
     }
 }
 
@@ -314,10 +315,12 @@ fn mesh_surface(
         vertices.dedup();
         bounding.extend(hull::triangles(points, tris, &vertices)?);
     }
-    let Start {
-        mut mesh, progress, ..
-    } = Start::of(starts, attempt, points, &bounding, &isolated)?;
-    let mut part = Partition::new(&bounding);
+    let (
+        Start {
+            mut mesh, progress, ..
+        },
+        mut part,
+    ) = Start::of(starts, attempt, points, &bounding, &isolated)?;
     // Two points per triangle, far more than any input that meshes needs (26 for 980
     // triangles at most in the C test), so that an attempt that goes astray stops soon.
     // The attempts with points inside first follow a failure: a quarter as many points as
