@@ -36,6 +36,8 @@ stage "cargo fmt" cargo fmt --check
 stage "cargo clippy" cargo clippy --all-targets -- -D warnings
 stage "cargo build" cargo build --release
 stage "cargo test" cargo test --release
+# The same tests unoptimized: debug assertions and integer overflow checks run there only.
+stage "cargo test (debug)" cargo test
 stage "header check" bash scripts/check-header.sh
 stage "C tests" c_tests test
 stage "Python tests" python3 tests/python/test_vs_triangle.py
