@@ -14,6 +14,7 @@
 use rustc_hash::FxHashSet;
 use smallvec::SmallVec;
 
+use super::partition::{pair, sides};
 use super::tetmesh::{key, Key, TetMesh};
 use crate::error::Result;
 use crate::geometry::{dist2, tet_volume};
@@ -36,14 +37,11 @@ impl Protected {
     /// edges ([`Protected::shell_may_go`] relies on it).
     pub fn insert_facet(&mut self, f: [u32; 3]) {
         self.facets.insert(key(f));
-        for k in 0..3 {
-            let (a, b) = (f[k], f[(k + 1) % 3]);
-            self.edges.insert([a.min(b), a.max(b)]);
-        }
+        self.edges.extend(sides(f));
     }
 
     pub fn edge(&self, a: u32, b: u32) -> bool {
-        self.edges.contains(&[a.min(b), a.max(b)])
+        self.edges.contains(&pair(a, b))
     }
 
     /// Per vertex `0..vertices`, whether it is an end of a protected edge (lies on the

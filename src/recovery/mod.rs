@@ -352,7 +352,6 @@ fn mesh_surface(
     // refinement, which takes the most memory (an attempt after a failure there would make
     // its start anew).
     starts.clear();
-    starts.shrink_to_fit();
     suppress::merge_interior(&mut mesh, &part.protected, points.len() as u32 + 8)?;
     suppress::relocate_interior(&mut mesh, &part, points.len() as u32 + 8);
     // The hull's triangles are in pieces where points stayed on them.
@@ -405,36 +404,6 @@ fn mesh_surface(
     })
 }
 
-/// Recovers every subface (§5.2): sub-edges first, then subfaces, by flips; where flips
-/// fail, a point is added on the surface at the first crossing and the loop starts again
-/// with the new, smaller pieces. At most `budget` points are added. Sub-edges the flips
-/// leave missing are tried again with edge removals one level deeper each time, down to
-/// `deepest` ([`edges::DEPTH`] for none), then with guarded unblocking at that level
-/// ([`edges::recover_edge`], shrinking crossed shells with `attempt.shrink`), and, with
-/// `attempt.interior`, by a point inside the volume ([`interior::recover_edge`]), before
-/// points are added for them. Before the first point, `before_points` is told the
-/// triangles (numbers in `part`) that may not be facets of the mesh, and may stop the
-/// recovery.
-fn recover(
-    mesh: &mut TetMesh,
-    part: &mut Partition,
-    budget: usize,
-    deepest: u32,
-    attempt: Attempt,
-    before_points: &mut dyn FnMut(&[usize]) -> Result<()>,
-) -> Result<()> {
-    let Some(mut progress) = Progress::start(mesh, part) else {
-        return Ok(());
-    };
-    let pending = progress.by_flips(mesh, part, deepest, attempt.shrink)?;
-    let mut points = Points {
-        budget,
-        first: true,
-        before_points,
-    };
-    progress.finish(mesh, part, pending, deepest, attempt, &mut points)
-}
-
 /// What flips leave missing ([`Progress::by_flips`]).
 #[derive(Clone)]
 enum Missing {
@@ -447,7 +416,7 @@ enum Missing {
     Faces(Vec<(usize, [u32; 3])>),
 }
 
-/// What [`recover`] has made present: the protected sub-edges and subfaces that are
+/// What recovery has made present: the protected sub-edges and subfaces that are
 /// edges and facets of the mesh stay so (flips never destroy them).
 #[derive(Clone)]
 struct Progress {
@@ -473,8 +442,10 @@ impl Progress {
         })
     }
 
-    /// Recovers the missing sub-edges by flips: free unblocking, deeper each time, then
-    /// guarded unblocking at the deepest level; when none is left, the missing subfaces.
+    /// Recovers the missing sub-edges by flips ([`edges::recover_edge`]): free unblocking,
+    /// one level deeper each time from [`edges::DEPTH`] down to `deepest`, then guarded
+    /// unblocking at that level, shrinking crossed shells with `shrink`; when none is left,
+    /// the missing subfaces ([`faces::recover_face`]). Returns what is still missing.
     fn by_flips(
         &mut self,
         mesh: &mut TetMesh,
@@ -524,7 +495,11 @@ impl Progress {
         })
     }
 
-    /// The rest of [`recover`], from what [`Progress::by_flips`] left `missing`.
+    /// Recovers every subface (§5.2) from what [`Progress::by_flips`] left `missing`: where
+    /// flips fail, a point is added on the surface at the first crossing and flips start
+    /// again with the new, smaller pieces (points inside the volume first with
+    /// `attempt.interior`, [`Progress::inside_first`]; subfaces made Delaunay around each
+    /// point with `attempt.delaunay`). `points` counts them.
     fn finish(
         &mut self,
         mesh: &mut TetMesh,
@@ -609,7 +584,7 @@ impl Progress {
     }
 }
 
-/// The points [`recover`] may still add (`budget`), and whether it has added one yet:
+/// The points [`Progress::finish`] may still add (`budget`), and whether it has added one yet:
 /// before the first on the surface, `before_points` is told the triangles (numbers in the
 /// partition) that may not be facets of the mesh, and may stop the recovery.
 struct Points<'a> {
@@ -646,16 +621,15 @@ impl Points<'_> {
 /// them; `None` when it needs a point.
 fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
     let mut mesh = enclosed_delaunay(points, triangles, &[]).ok()?;
-    let mut part = Partition::new(triangles);
-    recover(
-        &mut mesh,
-        &mut part,
-        0,
-        edges::DEPTH,
-        ATTEMPTS[0],
-        &mut |_| Ok(()),
-    )
-    .ok()?;
+    let part = Partition::new(triangles);
+    if let Some(mut progress) = Progress::start(&mut mesh, &part) {
+        let missing = progress
+            .by_flips(&mut mesh, &part, edges::DEPTH, false)
+            .ok()?;
+        if !matches!(missing, Missing::Nothing) {
+            return None;
+        }
+    }
     let n = points.len() as u32;
     let start = mesh.search_ball(n, |_, t| Some(t))?;
     let mut outside = vec![false; mesh.tets.slots()];

@@ -70,7 +70,7 @@ impl Partition {
         p.protected.facets.reserve(triangles.len());
         p.protected.edges.reserve(triangles.len() * 3 / 2);
         for &f in triangles {
-            p.protect(f);
+            p.protected.insert_facet(f);
         }
         p
     }
@@ -86,10 +86,6 @@ impl Partition {
     fn subfaces_mut(&mut self, f: usize) -> &mut Vec<[u32; 3]> {
         let whole = self.input[f];
         self.split.entry(f).or_insert_with(|| vec![whole])
-    }
-
-    fn protect(&mut self, f: [u32; 3]) {
-        self.protected.insert_facet(f);
     }
 
     /// Drops subface `f` from the protected set, and those of its edges no other subface
@@ -209,7 +205,7 @@ impl Partition {
                 // (x, y, z) with the split edge y -> z: both halves keep the orientation.
                 for half in [[x, y, s], [x, s, z]] {
                     self.subfaces_mut(f).push(half);
-                    self.protect(half);
+                    self.protected.insert_facet(half);
                 }
             }
         }
@@ -224,7 +220,7 @@ impl Partition {
         for k in 0..3 {
             let third = [t[k], t[(k + 1) % 3], s];
             self.subfaces_mut(f).push(third);
-            self.protect(third);
+            self.protected.insert_facet(third);
         }
         self.host.insert(s, Host::Face(f));
     }
@@ -312,7 +308,7 @@ impl Partition {
         self.subfaces_mut(f).retain(|t| !old.contains(t));
         for &t in new {
             self.subfaces_mut(f).push(t);
-            self.protect(t);
+            self.protected.insert_facet(t);
         }
         for &t in old {
             self.unprotect(t);
