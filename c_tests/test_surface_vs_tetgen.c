@@ -189,7 +189,7 @@ static void run_delmesh(const Case *c, double ratio, Output *o) {
  * reported as such, so that the list is the record of what is still short. */
 static const char *const known_limits[] = {"Chazelle k=5", "Chazelle k=6", "Chazelle k=7", "Chazelle k=8"};
 /* Generated cases on which delmesh needs more Steiner points than TetGen -pY without refinement:
- * Chazelle k=2, 8 against 6 (one of its points on the surface fills the pieces of its star
+ * Chazelle k=2, 7 against 6 (one of its points on the surface fills the pieces of its star
  * without it, where no move fits, and the others stay as they were placed). */
 static const char *const known_more_steiner[] = {"Chazelle k=2"};
 static int listed(const char *name, const char *const *list, size_t n) {

@@ -595,6 +595,16 @@ fn guarded_flips_create_no_facet_the_segment_crosses() {
     assert!(applied > 20, "{applied} flips applied");
 }
 
+/// Six times the volume of the finite tetrahedra of `mesh`.
+fn mesh_volume(mesh: &delmesh::recovery::tetmesh::TetMesh) -> f64 {
+    mesh.tets
+        .live()
+        .map(|t| mesh.tets.vertices(t))
+        .filter(|v| !v.contains(&u32::MAX))
+        .map(|v| volume6(v.map(|x| *mesh.point(x))))
+        .sum()
+}
+
 /// The recovery of a missing edge with one point inside the volume (`interior`), tried on
 /// every non-edge pair of vertices of a random Delaunay mesh: whenever it reports success,
 /// the edge is there, the mesh is valid (each facet glued to one of opposite orientation:
@@ -605,18 +615,10 @@ fn an_interior_point_recovers_edges_through_a_shell() {
     use delmesh::recovery::flips::Protected;
     use delmesh::recovery::interior::recover_edge;
     use delmesh::recovery::tetmesh::TetMesh;
-    let volume = |mesh: &TetMesh| -> f64 {
-        mesh.tets
-            .live()
-            .map(|t| mesh.tets.vertices(t))
-            .filter(|v| !v.contains(&u32::MAX))
-            .map(|v| volume6(v.map(|x| *mesh.point(x))))
-            .sum()
-    };
     let (points, used) = random_points(0x1f2e_3d4c, 30);
     let mut mesh = TetMesh::delaunay(points, &used).unwrap();
     let protected = Protected::default();
-    let whole = volume(&mesh);
+    let whole = mesh_volume(&mesh);
     let (mut with_point, mut without) = (0, 0);
     for a in 0..30u32 {
         for b in a + 1..30 {
@@ -628,7 +630,7 @@ fn an_interior_point_recovers_edges_through_a_shell() {
             };
             mesh.validate().unwrap();
             assert!(mesh.find_edge(a, b).is_some(), "edge ({a}, {b}) missing");
-            assert!((volume(&mesh) - whole).abs() <= 1e-12 * whole);
+            assert!((mesh_volume(&mesh) - whole).abs() <= 1e-12 * whole);
             if added {
                 with_point += 1;
             } else {
@@ -1107,4 +1109,55 @@ fn delaunay_flips_keep_a_tiling_partition_and_make_it_delaunay() {
             }
         }
     }
+}
+
+/// A sub-edge whose first crossing from its start `p` is an edge passing `p` within rounding
+/// (2^-60 off its line, as a point added where a sub-edge crossed that edge and rounded may
+/// be once flips make the edge again): no near copy of `p` is added. The edge's shell joins
+/// the star of `p`, which is coned again from `p`: the edge is gone, `p` is joined to its
+/// ends, the mesh is valid and its volume unchanged.
+#[test]
+fn an_edge_passing_a_sub_edge_start_within_rounding_is_taken_away_without_a_point() {
+    use delmesh::recovery::edges::{first_crossing, Crossing};
+    use delmesh::recovery::partition::Partition;
+    use delmesh::recovery::steiner::split_subedge;
+    use delmesh::recovery::tetmesh::TetMesh;
+    let (x, y, p, b, c, q, r) = (0, 1, 2, 3, 4, 5, 6);
+    let mut points = vec![
+        [-1.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 2f64.powi(-60), 0.0],
+        [0.0, -1.0, 1.0],
+        [0.0, -1.0, -1.0],
+        [0.2, -4.0, 0.0],
+        [0.2, -4.0, 1.0],
+    ];
+    for corner in 0..8 {
+        points.push([0, 1, 2].map(|k| if corner >> k & 1 == 0 { -8.0 } else { 8.0 }));
+    }
+    let used: Vec<u32> = (0..points.len() as u32).collect();
+    let mut mesh = TetMesh::delaunay(points, &used).unwrap();
+    // Edge (x, y) made by the 2-3 flip of facet (p, b, c), whose sides are x and y.
+    let (t, i) = mesh.find_face([p, b, c]).expect("facet (p, b, c)");
+    let (d, [u, v, w]) = mesh.with_apex(t, i);
+    let e = mesh.across(t, i);
+    assert_eq!([d.min(e), d.max(e)], [x, y]);
+    let n = mesh.tets.neighbor(t, i);
+    let flipped = [[d, u, v, e], [d, v, w, e], [d, w, u, e]];
+    assert!(flipped.iter().all(|&f| mesh.positive(f)));
+    mesh.replace(&[t, n], &flipped).unwrap();
+    let whole = mesh_volume(&mesh);
+    let mut part = Partition::new(&[[p, q, r]]);
+    let crossing = first_crossing(&mut mesh, p, q).unwrap();
+    assert!(
+        matches!(crossing, Some(Crossing::Edge(e, _)) if e.contains(&x) && e.contains(&y)),
+        "{crossing:?}"
+    );
+    let added = split_subedge(&mut mesh, &mut part, p, q, crossing.unwrap()).unwrap();
+    assert_eq!(added, None);
+    assert_eq!(mesh.points.len(), 15);
+    mesh.validate().unwrap();
+    assert!(mesh.find_edge(x, y).is_none());
+    assert!(mesh.find_edge(p, x).is_some() && mesh.find_edge(p, y).is_some());
+    assert!((mesh_volume(&mesh) - whole).abs() <= 1e-12 * whole);
 }

@@ -157,7 +157,7 @@ struct Attempt {
 
 /// Points on the surface alone first; where they cannot do it, points inside the volume
 /// first; then also coplanar crossings taken away after shrinking their shells (Chazelle's
-/// polyhedron with three notches a side meshes so, and with two only without it). Last,
+/// polyhedron with three notches a side meshes so). Last,
 /// points on the surface again, then inside first, with Delaunay subfaces: where the
 /// surface is planar over several triangles, the split subfaces of the first attempts grow
 /// thin, and points added on them a rounding apart defeat recovery (Chazelle's polyhedron
@@ -527,7 +527,7 @@ impl Progress {
                         })?;
                         if let Some(c) = edges::first_crossing(mesh, a, b)? {
                             let s = steiner::split_subedge(mesh, part, a, b, c)?;
-                            if attempt.delaunay {
+                            if let Some(s) = s.filter(|_| attempt.delaunay) {
                                 part.delaunay_around(s, &mesh.points);
                             }
                         }
