@@ -894,7 +894,7 @@ int main(int argc, char **argv) {
   for (size_t i = 0; i < sizeof twists / sizeof twists[0]; i++) generated_case(surface_twisted_prism(&s, twists[i]), &s);
   /* k = 2..8, 4 to 16 notches: TetGen -pY meshes k = 2..4, leaves points on its boundary at k = 5 and
    * fails from 6 on (assertion, endless loop); delmesh meshes k = 2..4 and stops with
-   * DELMESH_ERROR_LIMIT from 5 on, after 20 to 40 seconds each, so larger k only cost time. */
+   * DELMESH_ERROR_LIMIT from 5 on, after 10 to 25 seconds each, so larger k only cost time. */
   for (int k = 2; k <= 8; k++) generated_case(surface_chazelle(&s, k), &s);
   generated_case(surface_terrain(&s, 20), &s);
   generated_case(surface_slab(&s, 1), &s);
