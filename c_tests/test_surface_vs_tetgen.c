@@ -184,8 +184,8 @@ static void run_delmesh(const Case *c, double ratio, Output *o) {
                               delmesh_mesh_facets(m), delmesh_mesh_facet_labels(m), delmesh_mesh_facet_count(m)};
 }
 
-/* Cases on which delmesh is known to stop with DELMESH_ERROR_LIMIT (recovery ends, with Delaunay
- * subfaces, but some points it added on the surface cannot be moved off or merged away):
+/* Cases on which delmesh is known to stop with DELMESH_ERROR_LIMIT (every recovery attempt stops,
+ * on a crossing too near a sub-edge's end or on its point budget):
  * reported as such, so that the list is the record of what is still short. */
 static const char *const known_limits[] = {"Chazelle k=5", "Chazelle k=6", "Chazelle k=7", "Chazelle k=8"};
 /* Generated cases on which delmesh needs more Steiner points than TetGen -pY without refinement:
