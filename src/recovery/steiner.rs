@@ -217,7 +217,8 @@ fn absorb(mesh: &mut TetMesh, part: &Partition, p: u32, crossed: &[u32]) -> Resu
 }
 
 /// The tetrahedra joining `s` to the boundary facets of `set`, or `None` where a vertex of
-/// `set` is on no boundary facet (it would vanish) or a boundary facet holds `s`.
+/// `set` other than `s` is on no boundary facet (it would vanish). `s` is a new point, or a
+/// vertex whose whole star is in `set` (so on no boundary facet).
 fn cone_boundary(mesh: &mut TetMesh, set: &[u32], s: u32) -> Option<Vec<[u32; 4]>> {
     for &t in set {
         mesh.tets.mark[t as usize] = 3;
@@ -236,7 +237,7 @@ fn cone_boundary(mesh: &mut TetMesh, set: &[u32], s: u32) -> Option<Vec<[u32; 4]
     }
     let kept = |v: &u32| *v == s || new.iter().any(|q| q[..3].contains(v));
     let whole = set.iter().all(|&t| mesh.tets.vertices(t).iter().all(kept));
-    (whole && new.iter().all(|q| !q[..3].contains(&s))).then_some(new)
+    whole.then_some(new)
 }
 
 /// Adds a point on sub-edge `(p, q)` where it first crosses the mesh from `p`; returns it.
