@@ -12,8 +12,8 @@
 //! facets are removed (any valid ring triangulation, shrinking rings some levels deep as
 //! TetGen's `flipnm` does; a facet's edges where its 2-3 flip fails first, as TetGen's
 //! `removefacebyflips` picks them), which changes the stars without advancing, until the
-//! first crossings repeat or a bounded number of times. Edges still missing are tried again
-//! one level deeper, down to [`DEEPEST`], then once more with guarded unblocking: no flip may
+//! first crossings repeat or a bounded number of times. The caller tries the edges still
+//! missing again, deeper (down to [`DEEPEST`]) or with guarded unblocking: no flip may
 //! create a facet whose interior the segment crosses ([`Clear`], TetGen's
 //! `checkflipeligibility` with a segment).
 
@@ -33,7 +33,8 @@ pub const DEPTH: u32 = 3;
 const BUDGET: usize = 256;
 
 /// The deepest level at which the main recovery tries again the edges still missing, before
-/// it adds points (TetGen raises its flip level the same way, while missing segments remain).
+/// it adds points (TetGen raises its flip level the same way, while missing segments remain;
+/// the passes are the recovery's schedules).
 pub const DEEPEST: u32 = 5;
 
 /// How deep, and with how many edge removals, [`advance`] shrinks the shell of an edge the
