@@ -57,7 +57,6 @@ use rustc_hash::FxHashSet as HashSet;
 use crate::error::{Error, ErrorKind, Result};
 use crate::mesh::Mesh;
 use crate::predicates::Point;
-use crate::triangulation::tets::INFINITE;
 use edges::{DEEPEST, DEPTH};
 use partition::Partition;
 use tetmesh::TetMesh;
@@ -139,14 +138,13 @@ pub fn tetrahedralize_surface(
     // are tried too, and the fewest points win (the first among equals).
     let mut best = recover(&input, &mut intersections, SCHEDULES[0]);
     for &schedule in &SCHEDULES[1..] {
-        match &best {
-            Ok(b) if b.added > 0 => {}
+        let fewest = match &best {
+            Ok(b) if b.added > 0 => b.added,
             _ => break,
-        }
-        if let Ok(other) = recover(&input, &mut intersections, schedule) {
-            if best.as_ref().is_ok_and(|b| other.added < b.added) {
-                best = Ok(other);
-            }
+        };
+        match recover(&input, &mut intersections, schedule) {
+            Ok(other) if other.added < fewest => best = Ok(other),
+            _ => {}
         }
     }
     match best {
@@ -451,25 +449,20 @@ fn recover_by(
         bounding.to_vec()
     };
     let regions = classify::regions(&mut mesh, &facets, first_hull, options)?;
-    let mut inside: Vec<u32> = mesh
-        .tets
-        .live()
-        .filter(|&t| regions.kept(t))
-        .flat_map(|t| mesh.tets.vertices(t))
-        .filter(|&v| v >= first && v != INFINITE)
-        .collect();
-    inside.sort_unstable();
-    inside.dedup();
+    // The added points are few: their stars are looked at, not the mesh.
+    let added = (first..mesh.points.len() as u32)
+        .filter(|&v| mesh.in_mesh(v) && mesh.ball(v).iter().any(|&t| regions.kept(t)))
+        .count();
     Ok(Recovered {
         mesh,
         part,
         regions,
-        added: inside.len(),
+        added,
     })
 }
 
-/// The tetrahedralization of `tris` from its recovered mesh: regions, optional quality
-/// refinement, output arrays.
+/// The tetrahedralization of `tris` from its recovered mesh and regions: optional quality
+/// refinement and flips, output arrays.
 fn complete(
     recovered: Recovered,
     points: &[Point],
