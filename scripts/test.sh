@@ -13,12 +13,14 @@ stage() {
     local name="$1"
     shift
     echo "==> $name"
+    local start=$SECONDS
     if "$@"; then
         passed=$((passed + 1))
+        echo "==> passed: $name ($((SECONDS - start)) s)"
     else
         failed=$((failed + 1))
         failures+=("$name")
-        echo "==> FAILED: $name"
+        echo "==> FAILED: $name ($((SECONDS - start)) s)"
     fi
 }
 
