@@ -37,7 +37,7 @@ stage "setup" bash scripts/setup.sh
 stage "cargo fmt" cargo fmt --check
 stage "cargo clippy" cargo clippy --all-targets -- -D warnings
 stage "cargo build" cargo build --release
-stage "cargo test" cargo test --release
+stage "cargo test" cargo test --profile release-tests
 # The same tests unoptimized: debug assertions and integer overflow checks run there only.
 stage "cargo test (debug)" cargo test
 stage "header check" bash scripts/check-header.sh
