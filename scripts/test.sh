@@ -38,7 +38,8 @@ stage "cargo fmt" cargo fmt --check
 stage "cargo clippy" cargo clippy --all-targets -- -D warnings
 stage "cargo build" cargo build --release
 stage "cargo test" cargo test --profile release-tests
-# The same tests unoptimized: debug assertions and integer overflow checks run there only.
+# The same tests in the debug profile (optimization level 1): debug assertions and integer
+# overflow checks run there only.
 stage "cargo test (debug)" cargo test
 stage "header check" bash scripts/check-header.sh
 stage "C tests" c_tests test
