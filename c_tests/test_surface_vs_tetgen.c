@@ -892,11 +892,11 @@ int main(int argc, char **argv) {
   generated_case(surface_icosphere(&s, 2), &s);
   static const double twists[] = {10, 20, 30, 40, 50};
   for (size_t i = 0; i < sizeof twists / sizeof twists[0]; i++) generated_case(surface_twisted_prism(&s, twists[i]), &s);
-  /* k = 2..8, 4 to 16 notches: TetGen -pY meshes k = 2..4, leaves points on its boundary at k = 5 and
-   * fails from 6 on (assertion, endless loop); delmesh meshes k = 2..4 and stops with
-   * DELMESH_ERROR_LIMIT from 5 on. Under --small (the sanitized run) k stops at 3: larger ones
-   * pass the C API nothing new, and took 9 of its 14 minutes (ASan's allocator slows recovery,
-   * which allocates much, more than twofold). */
+  /* k = 2..8, 4 to 16 notches: TetGen -pY meshes k = 2, leaves points on its boundary at k = 3 and 4,
+   * returns an invalid mesh at 5 (inverted tetrahedra) and fails from 6 on (assertion, endless
+   * loop); delmesh meshes k = 2..4 and stops with DELMESH_ERROR_LIMIT from 5 on. Under --small
+   * (the sanitized run) k stops at 3: larger ones pass the C API nothing new, and took 9 of its
+   * 14 minutes (ASan's allocator slows recovery, which allocates much, more than twofold). */
   for (int k = 2; k <= (small ? 3 : 8); k++) generated_case(surface_chazelle(&s, k), &s);
   generated_case(surface_terrain(&s, 20), &s);
   generated_case(surface_slab(&s, 1), &s);
