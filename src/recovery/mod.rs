@@ -20,7 +20,8 @@
 //!    ([`ATTEMPTS`]). Up to their first point, attempts that shrink shells alike do the
 //!    same: that start is made once ([`Start`]). The flip passes before points are added
 //!    follow a schedule; where the first schedule's mesh has interior points, the others are
-//!    run too and the fewest points win ([`SCHEDULES`]).
+//!    run too and the fewest points win ([`SCHEDULES`]); a schedule that begins with passes
+//!    an earlier one made goes on from a copy of the state they left ([`Prefix`]).
 //! 4. Points added on the surface are moved off it, then merged away, or removed where their
 //!    star, or their star and a few layers around it, can be filled again without them by
 //!    this same recovery with no point allowed (§5.3, [`suppress`]).
@@ -136,17 +137,20 @@ pub fn tetrahedralize_surface(
     };
     // The first schedule's error is the one reported; where it needs points, the others
     // are tried too, and the fewest points win (the first among equals).
-    let mut best = recover(&input, &mut intersections, SCHEDULES[0]);
+    let mut starts = Starts::default();
+    let mut best = recover(&input, &mut intersections, &mut starts, SCHEDULES[0]);
     for &schedule in &SCHEDULES[1..] {
         let fewest = match &best {
             Ok(b) if b.added > 0 => b.added,
             _ => break,
         };
-        match recover(&input, &mut intersections, schedule) {
+        match recover(&input, &mut intersections, &mut starts, schedule) {
             Ok(other) if other.added < fewest => best = Ok(other),
             _ => {}
         }
     }
+    // The kept copies are freed before refinement.
+    drop(starts);
     match best {
         Ok(recovered) => complete(recovered, points, tris, options),
         // A self-intersection is the first cause to report.
@@ -212,15 +216,15 @@ const FILL: Schedule = &[(DEPTH, false), (DEPTH, true)];
 fn recover(
     input: &Input,
     intersections: &mut IntersectionCheck,
+    starts: &mut Starts,
     schedule: Schedule,
 ) -> Result<Recovered> {
-    let mut starts = Vec::new();
-    let mut attempt = recover_by(input, intersections, &mut starts, ATTEMPTS[0], schedule);
+    let mut attempt = recover_by(input, intersections, starts, ATTEMPTS[0], schedule);
     for &next in &ATTEMPTS[1..] {
         if !matches!(&attempt, Err(e) if e.kind == ErrorKind::Limit) {
             break;
         }
-        match recover_by(input, intersections, &mut starts, next, schedule) {
+        match recover_by(input, intersections, starts, next, schedule) {
             Err(e) if e.kind == ErrorKind::Limit => {}
             other => attempt = other,
         }
@@ -332,19 +336,97 @@ struct Start {
     progress: Option<(Progress, Missing)>,
 }
 
+/// The starts kept for later attempts of the schedule under way ([`Start::of`]), and the
+/// states after the first passes of a schedule that a later schedule begins with
+/// ([`Prefix`]).
+#[derive(Default)]
+struct Starts {
+    attempts: Vec<Start>,
+    prefixes: Vec<Prefix>,
+}
+
+/// The state of a start after `passes`, the first passes of a schedule, when sub-edges are
+/// still missing and a later schedule begins with the same passes: that one goes on from a
+/// copy. The passes are deterministic, so its start is the same as if it made them again
+/// (all three [`SCHEDULES`] begin with the unguarded pass, which took 0.52 s of anchor's
+/// 1.4 s start; the third begins with the first's two first passes).
+struct Prefix {
+    shrink: bool,
+    passes: Schedule,
+    mesh: TetMesh,
+    progress: Progress,
+    stuck: Vec<[u32; 2]>,
+}
+
+impl Starts {
+    /// The kept state of the longest prefix of `schedule` with `shrink`.
+    fn longest(&self, shrink: bool, schedule: Schedule) -> Option<&Prefix> {
+        self.prefixes
+            .iter()
+            .filter(|p| p.shrink == shrink && schedule.starts_with(p.passes))
+            .max_by_key(|p| p.passes.len())
+    }
+
+    /// Whether the state after `passes`, the first passes of `schedule`, is to be kept: a
+    /// later schedule begins with them, and it is not kept yet.
+    fn wanted(&self, shrink: bool, schedule: Schedule, passes: Schedule) -> bool {
+        let later = SCHEDULES
+            .iter()
+            .skip_while(|s| !std::ptr::eq(**s, schedule))
+            .skip(1)
+            .any(|s| s.starts_with(passes));
+        later
+            && !self
+                .prefixes
+                .iter()
+                .any(|p| p.shrink == shrink && p.passes == passes)
+    }
+}
+
 impl Start {
+    /// The start with `schedule`'s passes, from the longest prefix `starts` keeps; the
+    /// states after passes a later schedule shares are kept there.
     fn new(
-        points: &[Point],
-        bounding: &[[u32; 3]],
-        isolated: &[u32],
+        input: &Input,
         shrink: bool,
         schedule: Schedule,
+        starts: &mut Starts,
     ) -> Result<(Self, Partition)> {
-        let mut mesh = enclosed_delaunay(points, bounding, isolated)?;
-        let part = Partition::new(bounding);
-        let progress = match Progress::start(&mut mesh, &part) {
-            Some(mut p) => {
-                let missing = p.by_flips(&mut mesh, &part, schedule, shrink)?;
+        let part = Partition::new(input.bounding);
+        let (mut mesh, begun) = match starts.longest(shrink, schedule) {
+            Some(p) => {
+                let begun = (p.progress.clone(), p.stuck.clone(), p.passes.len());
+                (p.mesh.clone(), Some(begun))
+            }
+            None => {
+                let mut mesh = enclosed_delaunay(input.points, input.bounding, input.isolated)?;
+                let begun = Progress::start(&mut mesh, &part).map(|p| {
+                    let stuck = p.missing_edges(&part);
+                    (p, stuck, 0)
+                });
+                (mesh, begun)
+            }
+        };
+        let progress = match begun {
+            Some((mut p, mut stuck, done)) => {
+                for k in done..schedule.len() {
+                    if stuck.is_empty() {
+                        break;
+                    }
+                    let pass = &schedule[k..=k];
+                    stuck = p.edge_passes(&mut mesh, &part, stuck, pass, shrink)?;
+                    let passes = &schedule[..=k];
+                    if !stuck.is_empty() && starts.wanted(shrink, schedule, passes) {
+                        starts.prefixes.push(Prefix {
+                            shrink,
+                            passes,
+                            mesh: mesh.clone(),
+                            progress: p.clone(),
+                            stuck: stuck.clone(),
+                        });
+                    }
+                }
+                let missing = p.faces_after(&mut mesh, &part, stuck)?;
                 Some((p, missing))
             }
             None => None,
@@ -365,19 +447,17 @@ impl Start {
     /// The start of `attempt` and its partition: a copy of the one `starts` keeps, else a
     /// new one, kept when it needs points.
     fn of(
-        starts: &mut Vec<Start>,
+        starts: &mut Starts,
         attempt: Attempt,
         schedule: Schedule,
-        points: &[Point],
-        bounding: &[[u32; 3]],
-        isolated: &[u32],
+        input: &Input,
     ) -> Result<(Self, Partition)> {
-        if let Some(s) = starts.iter().find(|s| s.shrink == attempt.shrink) {
-            return Ok((s.clone(), Partition::new(bounding)));
+        if let Some(s) = starts.attempts.iter().find(|s| s.shrink == attempt.shrink) {
+            return Ok((s.clone(), Partition::new(input.bounding)));
         }
-        let (s, part) = Start::new(points, bounding, isolated, attempt.shrink, schedule)?;
+        let (s, part) = Start::new(input, attempt.shrink, schedule, starts)?;
         if s.needs_points() {
-            starts.push(s.clone());
+            starts.attempts.push(s.clone());
         }
         Ok((s, part))
     }
@@ -388,7 +468,7 @@ impl Start {
 fn recover_by(
     input: &Input,
     intersections: &mut IntersectionCheck,
-    starts: &mut Vec<Start>,
+    starts: &mut Starts,
     attempt: Attempt,
     schedule: Schedule,
 ) -> Result<Recovered> {
@@ -396,15 +476,15 @@ fn recover_by(
         points,
         bounding,
         first_hull,
-        isolated,
         options,
+        ..
     } = *input;
     let (
         Start {
             mut mesh, progress, ..
         },
         mut part,
-    ) = Start::of(starts, attempt, schedule, points, bounding, isolated)?;
+    ) = Start::of(starts, attempt, schedule, input)?;
     // Two points per triangle, far more than any input that meshes needs (26 for 980
     // triangles at most in the C test), so that an attempt that goes astray stops soon.
     // The attempts with points inside first follow a failure: a quarter as many points as
@@ -433,7 +513,7 @@ fn recover_by(
     let normals: Vec<Point> = bounding.iter().map(|f| unit_normal(points, *f)).collect();
     suppress::suppress_all(&mut mesh, &mut part, &normals, first_hull)?;
     // The copies serve attempts after a failed recovery; past it, they are freed.
-    starts.clear();
+    starts.attempts.clear();
     let first = points.len() as u32 + 8;
     suppress::merge_interior(&mut mesh, &part.protected, first)?;
     suppress::relocate_interior(&mut mesh, &part, first);
@@ -562,11 +642,28 @@ impl Progress {
         schedule: Schedule,
         shrink: bool,
     ) -> Result<Missing> {
-        let mut stuck: Vec<[u32; 2]> = part
-            .subedges()
+        let stuck = self.missing_edges(part);
+        let stuck = self.edge_passes(mesh, part, stuck, schedule, shrink)?;
+        self.faces_after(mesh, part, stuck)
+    }
+
+    /// The sub-edges of the partition that are not edges yet.
+    fn missing_edges(&self, part: &Partition) -> Vec<[u32; 2]> {
+        part.subedges()
             .into_iter()
             .filter(|e| !self.edges_done.contains(e))
-            .collect();
+            .collect()
+    }
+
+    /// The passes of `schedule` over the missing sub-edges `stuck`; those still missing.
+    fn edge_passes(
+        &mut self,
+        mesh: &mut TetMesh,
+        part: &Partition,
+        mut stuck: Vec<[u32; 2]>,
+        schedule: Schedule,
+        shrink: bool,
+    ) -> Result<Vec<[u32; 2]>> {
         for &(depth, guarded) in schedule {
             if stuck.is_empty() {
                 break;
@@ -579,6 +676,17 @@ impl Progress {
                 Ok(done)
             })?;
         }
+        Ok(stuck)
+    }
+
+    /// What is missing when the sub-edges `stuck` are: those, or when every sub-edge is an
+    /// edge, the subfaces flips leave missing ([`faces::recover_face`]).
+    fn faces_after(
+        &mut self,
+        mesh: &mut TetMesh,
+        part: &Partition,
+        stuck: Vec<[u32; 2]>,
+    ) -> Result<Missing> {
         if !stuck.is_empty() {
             return Ok(Missing::Edges(stuck));
         }
