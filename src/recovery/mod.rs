@@ -359,13 +359,13 @@ struct Prefix {
 }
 
 impl Prefix {
-    /// The largest mesh copied. The copy is made before it is known whether a later
-    /// schedule runs, which it does only where the first leaves interior points, and a copy
-    /// costs about 50 ns a tetrahedron: fandisk (40483 tetrahedra, 5 sub-edges missing after
-    /// the first pass) and armadillo (178495, 9 missing) end without interior points, and
-    /// their copies took 2 and 6.5 ms, 2 to 3 % of their time. The inputs that need the later
-    /// schedules have small meshes where flips fail (anchor 4270, handle 7844, sphere966
-    /// 5179).
+    /// The largest mesh copied (in tetrahedron slots). The copy is made before it is known
+    /// whether a later schedule runs, which it does only where the first leaves interior
+    /// points, and a copy costs 35 to 50 ns a slot: fandisk (40483 slots, 5 sub-edges
+    /// missing after the first pass) and armadillo (178495, 9 missing) end without interior
+    /// points, and their two copies took 2 ms each and 6.4 and 7.3 ms, 3 to 4 % of their
+    /// time. The inputs that need the later schedules have small meshes where flips fail
+    /// (anchor 4270 slots, handle 7844, sphere966 5179).
     const MOST_TETS: usize = 16_384;
 }
 
@@ -376,6 +376,37 @@ impl Starts {
             .iter()
             .filter(|p| p.shrink == shrink && schedule.starts_with(p.passes))
             .max_by_key(|p| p.passes.len())
+    }
+
+    /// The passes of `schedule` from number `done` on, with `shrink`, over the missing
+    /// sub-edges `stuck` of `mesh` ([`Progress::edge_passes`]), keeping the states a later
+    /// schedule begins with; the sub-edges still missing.
+    fn pass_on(
+        &mut self,
+        mesh: &mut TetMesh,
+        part: &Partition,
+        progress: &mut Progress,
+        mut stuck: Vec<[u32; 2]>,
+        (schedule, done, shrink): (Schedule, usize, bool),
+    ) -> Result<Vec<[u32; 2]>> {
+        for k in done..schedule.len() {
+            if stuck.is_empty() {
+                break;
+            }
+            stuck = progress.edge_passes(mesh, part, stuck, &schedule[k..=k], shrink)?;
+            let passes = &schedule[..=k];
+            let tets = mesh.tets.slots();
+            if !stuck.is_empty() && self.wanted(shrink, schedule, passes, tets) {
+                self.prefixes.push(Prefix {
+                    shrink,
+                    passes,
+                    mesh: mesh.clone(),
+                    progress: progress.clone(),
+                    stuck: stuck.clone(),
+                });
+            }
+        }
+        Ok(stuck)
     }
 
     /// Whether the state after `passes`, the first passes of `schedule`, in a mesh of
@@ -423,25 +454,9 @@ impl Start {
             }
         };
         let progress = match begun {
-            Some((mut p, mut stuck, done)) => {
-                for k in done..schedule.len() {
-                    if stuck.is_empty() {
-                        break;
-                    }
-                    let pass = &schedule[k..=k];
-                    stuck = p.edge_passes(&mut mesh, &part, stuck, pass, shrink)?;
-                    let passes = &schedule[..=k];
-                    let tets = mesh.tets.slots();
-                    if !stuck.is_empty() && starts.wanted(shrink, schedule, passes, tets) {
-                        starts.prefixes.push(Prefix {
-                            shrink,
-                            passes,
-                            mesh: mesh.clone(),
-                            progress: p.clone(),
-                            stuck: stuck.clone(),
-                        });
-                    }
-                }
+            Some((mut p, stuck, done)) => {
+                let passes = (schedule, done, shrink);
+                let stuck = starts.pass_on(&mut mesh, &part, &mut p, stuck, passes)?;
                 let missing = p.faces_after(&mut mesh, &part, stuck)?;
                 Some((p, missing))
             }
