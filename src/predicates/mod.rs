@@ -162,6 +162,15 @@ impl BoxFilter {
         }
     }
 
+    /// [`insphere`] of points of the box.
+    #[inline]
+    pub fn insphere(&self, a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {
+        match self.0.insphere(a, b, c, d, e) {
+            Some(sign) => sign,
+            None => exact::insphere(a, b, c, d, e),
+        }
+    }
+
     /// [`insphere_sos`] of points of the box.
     #[inline]
     pub fn insphere_sos(&self, a: &Point, b: &Point, c: &Point, d: &Point, e: &Point) -> Sign {

@@ -36,7 +36,7 @@ use super::flips::{flip32, remove_non_delaunay_edge, Protected};
 use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{circumcenter, dist, dist2, dot, sub, tet_volume, triangle_circumcenter};
-use crate::predicates::{insphere, orient3d, Point, Sign};
+use crate::predicates::{Point, Sign};
 use crate::triangulation::tets::{FACE, INFINITE};
 
 /// The tetrahedra above their bounds, worst first: in buckets by how far above (on a log
@@ -352,8 +352,7 @@ impl Refiner<'_> {
         })?;
         let mut zeros = 0;
         for i in 0..4 {
-            let [a, b, d] = self.mesh.facet(at, i).map(|v| self.mesh.point(v));
-            if orient3d(a, b, d, c) == Sign::Zero {
+            if self.mesh.orient_point(self.mesh.facet(at, i), c) == Sign::Zero {
                 if self.regions.on_surface(at, i) {
                     return None;
                 }
@@ -374,8 +373,7 @@ impl Refiner<'_> {
             {
                 return false;
             }
-            let p = q.map(|v| me.mesh.point(v));
-            insphere(p[0], p[1], p[2], p[3], c) == Sign::Positive
+            me.mesh.insphere(q, c) == Sign::Positive
         });
         for &u in &cavity {
             self.mesh.tets.mark[u as usize] = 0;
@@ -490,8 +488,7 @@ impl Refiner<'_> {
                         continue;
                     }
                     let f = self.mesh.facet(u, i);
-                    let [a, b, d] = f.map(|v| *self.mesh.point(v));
-                    if orient3d(&a, &b, &d, c) == Sign::Positive {
+                    if self.mesh.orient_point(f, c) == Sign::Positive {
                         facets.push((f, self.mesh.tets.glued(u, i)));
                     } else {
                         blocked.push(u);
@@ -663,8 +660,7 @@ impl Refiner<'_> {
         if q.contains(&INFINITE) || e == INFINITE {
             return Ok(None);
         }
-        let p = q.map(|v| self.mesh.point(v));
-        if insphere(p[0], p[1], p[2], p[3], self.mesh.point(e)) != Sign::Positive {
+        if self.mesh.insphere(q, self.mesh.point(e)) != Sign::Positive {
             return Ok(None);
         }
         let new = [[d, x, y, e], [d, y, z, e], [d, z, x, e]];

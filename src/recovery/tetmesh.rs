@@ -10,7 +10,7 @@
 //! `points`; every live finite tetrahedron is positively oriented; adjacency is symmetric;
 //! `vertex_tet[v]` is a live tetrahedron incident to `v` for every vertex in use;
 //! `failed_rings` holds only failures that the points' current positions make (it is emptied
-//! when a point moves or its number is given back).
+//! when a point moves or its number is given back); `bounds` holds every point.
 
 use rustc_hash::FxHashSet;
 use smallvec::SmallVec;
@@ -18,7 +18,7 @@ use smallvec::SmallVec;
 use super::by_vertex::ByVertex;
 use super::flips::{FailedRings, Protected};
 use crate::error::{Error, Result};
-use crate::predicates::{orient3d, Point, Sign};
+use crate::predicates::{insphere, orient3d, BoxFilter, Point, Sign};
 use crate::triangulation::edge_table::EdgeTable;
 use crate::triangulation::tets::{Tets, FACE, INFINITE};
 use crate::triangulation::Triangulation;
@@ -68,6 +68,12 @@ pub struct TetMesh {
     changed: bool,
     /// Edge removals known to fail while no point moves.
     pub failed_rings: FailedRings,
+    /// A box holding every point (grown as points are added or moved), and the filter of the
+    /// predicates for points in it: its bound is fixed by the box, not computed per call
+    /// (as the Delaunay triangulation's). A point tested before it is added, outside the
+    /// box, gets the ordinary filter.
+    bounds: [Point; 2],
+    filter: BoxFilter,
 }
 
 /// A copy without the scratch tables and with no failed ring remembered: those are only
@@ -83,6 +89,8 @@ impl Clone for TetMesh {
             first_added: self.first_added,
             changed: self.changed,
             failed_rings: FailedRings::default(),
+            bounds: self.bounds,
+            filter: self.filter,
         }
     }
 }
@@ -113,7 +121,12 @@ impl TetMesh {
             first_added: 0,
             changed: false,
             failed_rings: FailedRings::default(),
+            bounds: [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]],
+            filter: BoxFilter::new(&[0.0; 3], &[0.0; 3]),
         };
+        for v in 0..mesh.points.len() as u32 {
+            mesh.enclose(v);
+        }
         mesh.first_added = mesh.points.len() as u32;
         for t in 0..mesh.tets.slots() as u32 {
             if mesh.tets.is_live(t) {
@@ -147,7 +160,52 @@ impl TetMesh {
         self.changed = true;
         self.points.push(p);
         self.vertex_tet.push(NONE);
-        (self.points.len() - 1) as u32
+        let v = (self.points.len() - 1) as u32;
+        self.enclose(v);
+        v
+    }
+
+    /// Grows the filter's box to hold point `v` where it does not.
+    fn enclose(&mut self, v: u32) {
+        let p = self.points[v as usize];
+        if self.in_box(&p) {
+            return;
+        }
+        let [lo, hi] = &mut self.bounds;
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+        self.filter = BoxFilter::new(lo, hi);
+    }
+
+    /// Whether `p` lies in the filter's box.
+    fn in_box(&self, p: &Point) -> bool {
+        let [lo, hi] = &self.bounds;
+        (0..3).all(|k| lo[k] <= p[k] && p[k] <= hi[k])
+    }
+
+    /// Exact orientation of the facet of vertices `f` and point `p`.
+    #[inline]
+    pub fn orient_point(&self, f: [u32; 3], p: &Point) -> Sign {
+        let [a, b, c] = f.map(|x| self.point(x));
+        if self.in_box(p) {
+            self.filter.orient3d(a, b, c, p)
+        } else {
+            orient3d(a, b, c, p)
+        }
+    }
+
+    /// Exact in-sphere test of point `e` against the tetrahedron of vertices `v` (positively
+    /// oriented): positive when `e` is strictly inside its circumsphere.
+    #[inline]
+    pub fn insphere(&self, v: [u32; 4], e: &Point) -> Sign {
+        let [a, b, c, d] = v.map(|x| self.point(x));
+        if self.in_box(e) {
+            self.filter.insphere(a, b, c, d, e)
+        } else {
+            insphere(a, b, c, d, e)
+        }
     }
 
     /// Whether `v` was added after the Delaunay triangulation (a Steiner point).
@@ -166,6 +224,7 @@ impl TetMesh {
     /// Moves point `v` to `p`.
     pub fn move_point(&mut self, v: u32, p: Point) {
         self.points[v as usize] = p;
+        self.enclose(v);
         self.failed_rings.clear();
     }
 
@@ -177,7 +236,7 @@ impl TetMesh {
     /// Exact orientation of four finite vertices.
     #[inline]
     pub fn orient(&self, v: [u32; 4]) -> Sign {
-        orient3d(
+        self.filter.orient3d(
             self.point(v[0]),
             self.point(v[1]),
             self.point(v[2]),
@@ -257,8 +316,7 @@ impl TetMesh {
         let mut at = t;
         'walk: for _ in 0..steps {
             for i in 0..4 {
-                let [a, b, d] = self.facet(at, i).map(|v| self.point(v));
-                if orient3d(a, b, d, c) == Sign::Negative {
+                if self.orient_point(self.facet(at, i), c) == Sign::Negative {
                     let n = self.tets.neighbor(at, i);
                     if !may_cross(self, at, i, n) {
                         return None;
