@@ -1161,3 +1161,57 @@ fn an_edge_passing_a_sub_edge_start_within_rounding_is_taken_away_without_a_poin
     assert!(mesh.find_edge(p, x).is_some() && mesh.find_edge(p, y).is_some());
     assert!((mesh_volume(&mesh) - whole).abs() <= 1e-12 * whole);
 }
+
+/// The mesh decides orientations and in-sphere tests with the filter of a box holding its
+/// points: a point added or moved outside the first box must grow it, or the box's small
+/// error bound would certify rounded signs. Points a few ulps off the plane x + y = 2z
+/// through two points of the unit cube and one far outside it, added or moved there
+/// (Kettner et al.'s classroom example of rounded orientations, in 3D), are decided as the
+/// ordinary predicates decide them.
+#[test]
+fn mesh_predicates_stay_exact_for_points_added_or_moved_far_away() {
+    use delmesh::predicates::{insphere, orient3d, Sign};
+    use delmesh::recovery::tetmesh::TetMesh;
+    let (a, b, c) = ([0.75, 0.25, 0.5], [1e3, 1e3, 1e3], [0.125, 0.25, 0.1875]);
+    for moved in [false, true] {
+        let (points, used) = random_points(0x1234_5678, 12);
+        let mut mesh = TetMesh::delaunay(points, &used).unwrap();
+        let va = mesh.add_point(a);
+        let vc = mesh.add_point(c);
+        let vb = if moved {
+            mesh.move_point(0, b);
+            0
+        } else {
+            mesh.add_point(b)
+        };
+        let e = mesh.add_point([0.5, 0.5, 0.9]);
+        let q = match orient3d(&a, &b, &c, mesh.point(e)) {
+            Sign::Negative => [vb, va, vc, e],
+            _ => [va, vb, vc, e],
+        };
+        let p = q.map(|v| *mesh.point(v));
+        let ulp = f64::EPSILON / 2.0;
+        let mut signs = [0; 3];
+        for i in 0..12 {
+            for j in 0..12 {
+                for k in 0..12 {
+                    let d = [
+                        0.5 + i as f64 * ulp,
+                        0.5 + j as f64 * ulp,
+                        0.5 + k as f64 * ulp,
+                    ];
+                    let vd = mesh.add_point(d);
+                    let expected = orient3d(&a, &b, &c, &d);
+                    assert_eq!(mesh.orient([va, vb, vc, vd]), expected, "{moved} {d:?}");
+                    signs[(expected as i32 + 1) as usize] += 1;
+                    let x: [f64; 3] = std::array::from_fn(|m| d[m] + 0.5);
+                    for x in [d, x] {
+                        let plain = insphere(&p[0], &p[1], &p[2], &p[3], &x);
+                        assert_eq!(mesh.insphere(q, &x), plain, "{moved} {x:?}");
+                    }
+                }
+            }
+        }
+        assert!(signs.iter().all(|&n| n > 0), "{moved} {signs:?}");
+    }
+}
