@@ -51,9 +51,30 @@ impl Regions {
         self.input.renew(mesh, created);
     }
 
+    /// [`Regions::assign`] for the cone of [`TetMesh::try_replace_by_cone`]: facet 3 of
+    /// `created[j]` is glued outside to the facet that was the bounding triangle
+    /// `triangles[j]` ([`Regions::triangle`]) of the replaced tetrahedra, the others to
+    /// tetrahedra of the cone. (What [`Regions::assign`] would look up outside, at random
+    /// places of memory, the caller had at hand.)
+    pub fn assign_cone(&mut self, created: &[u32], triangles: &[u32], c: u32) {
+        for (&t, &k) in created.iter().zip(triangles) {
+            if self.component.len() <= t as usize {
+                self.component.resize(t as usize + 1, u32::MAX);
+            }
+            self.component[t as usize] = c;
+            self.input.set(t, [NOT_INPUT, NOT_INPUT, NOT_INPUT, k]);
+        }
+    }
+
     /// Whether facet `i` of tetrahedron `t` is a bounding triangle.
     pub fn on_surface(&self, t: u32, i: usize) -> bool {
         self.input.contains(t, i)
+    }
+
+    /// The number of the bounding triangle facet `i` of tetrahedron `t` is, or
+    /// [`NOT_INPUT`].
+    pub fn triangle(&self, t: u32, i: usize) -> u32 {
+        self.input.triangle[t as usize][i]
     }
 
     /// One facet `(t, i)` per bounding triangle.
@@ -86,7 +107,7 @@ struct InputFacets {
 }
 
 /// The triangle number of a facet that is no input triangle.
-const NOT_INPUT: u32 = u32::MAX;
+pub const NOT_INPUT: u32 = u32::MAX;
 /// The triangle number of the facets of a new tetrahedron, while [`InputFacets::renew`] runs.
 const NEW: u32 = u32::MAX - 1;
 
@@ -134,22 +155,31 @@ impl InputFacets {
     /// pair of tetrahedra only).
     fn renew(&mut self, mesh: &TetMesh, created: &[u32]) {
         for &t in created {
-            if self.triangle.len() <= t as usize {
-                self.triangle.resize(t as usize + 1, [NOT_INPUT; 4]);
-            }
-            self.triangle[t as usize] = [NEW; 4];
+            self.set(t, [NEW; 4]);
         }
+        // A facet between two new tetrahedra reads `NEW` or, once the other is set,
+        // `NOT_INPUT`.
         for &t in created {
-            for i in 0..4 {
+            let row = std::array::from_fn(|i| {
                 let g = mesh.tets.glued(t, i);
-                let k = match self.triangle[(g >> 2) as usize][(g & 3) as usize] {
+                match self.triangle[(g >> 2) as usize][(g & 3) as usize] {
                     NEW => NOT_INPUT,
                     k => k,
-                };
-                self.triangle[t as usize][i] = k;
-                if k != NOT_INPUT {
-                    self.at[k as usize] = (t, i);
                 }
+            });
+            self.set(t, row);
+        }
+    }
+
+    /// Sets the triangle numbers of the facets of `t`.
+    fn set(&mut self, t: u32, row: [u32; 4]) {
+        if self.triangle.len() <= t as usize {
+            self.triangle.resize(t as usize + 1, [NOT_INPUT; 4]);
+        }
+        self.triangle[t as usize] = row;
+        for (i, &k) in row.iter().enumerate() {
+            if k < NEW {
+                self.at[k as usize] = (t, i);
             }
         }
     }

@@ -31,7 +31,7 @@
 use std::collections::VecDeque;
 
 use super::by_vertex::ByVertex;
-use super::classify::Regions;
+use super::classify::{Regions, NOT_INPUT};
 use super::flips::{flip32, remove_non_delaunay_edge, Protected};
 use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
@@ -139,6 +139,19 @@ pub fn refine(
     refiner.run(n_input)
 }
 
+/// A Bowyer–Watson cavity as [`Refiner::cavity`] finds it.
+struct Cavity {
+    /// Its tetrahedra, the one holding the point first.
+    tets: Vec<u32>,
+    /// Its boundary facets that see the point on their positive side, in the order of
+    /// `tets` and of their facets, each with the facet glued to it outside.
+    cone: Vec<([u32; 3], u32)>,
+    /// The input triangle each facet of `cone` is ([`Regions::triangle`]).
+    triangles: Vec<u32>,
+    /// The tetrahedra with a boundary facet that does not (the cavity must be shrunk).
+    blocked: Vec<u32>,
+}
+
 /// The protected edges as refinement asks for them: a flag per vertex lying on them answers
 /// first, so that the many questions about edges with another vertex (the refinement's own
 /// points above all) need no lookup in the large hash set, whose random accesses miss the
@@ -171,7 +184,8 @@ struct Refiner<'a> {
     surface: Surface<'a>,
     regions: &'a mut Regions,
     ratio: f64,
-    /// Protecting-ball radius of every vertex (0 for Steiner points).
+    /// Protecting-ball radius of every input vertex (0 for those not in the mesh); Steiner
+    /// points, numbered after them, have none.
     lfs: Vec<f64>,
     /// Tetrahedra above their bounds, with their vertices (a slot reused since is skipped).
     queue: BadQueue,
@@ -298,32 +312,28 @@ impl Refiner<'_> {
         let Some(start) = self.locate(t, &c) else {
             return Ok(false);
         };
-        // The tetrahedron holding `c` is in its cavity: checked alone first, it declines
-        // most encroaching points before the cavity is searched.
-        if split != Split::Centroid && self.encroaches(&[start], 0, &c, split) {
-            return Ok(false);
-        }
-        let mut cavity = self.cavity(start, &c);
-        // `start` comes first in the cavity and was checked above.
-        if split != Split::Centroid && self.encroaches(&cavity, 1, &c, split) {
-            return Ok(false);
-        }
-        let full = cavity.len();
-        let Some(cone) = self.star_shaped(start, &mut cavity, &c) else {
+        let Some(mut cavity) = self.cavity(start, &c, split) else {
             return Ok(false);
         };
-        let shrunk = cavity.len() != full;
-        if split == Split::Ratio && self.too_close(t, &cone, &c) {
+        let full = cavity.tets.len();
+        if !self.star_shaped(start, &mut cavity, &c) {
+            return Ok(false);
+        }
+        let shrunk = cavity.tets.len() != full;
+        if split == Split::Ratio && self.too_close(t, &cavity.cone, &c) {
             return Ok(false);
         }
         let s = self.mesh.add_point(c);
         let component = self.regions.component[start as usize];
-        let Some(created) = self.mesh.try_replace_by_cone(&cavity, s, &cone)? else {
+        let Some(created) = self
+            .mesh
+            .try_replace_by_cone(&cavity.tets, s, &cavity.cone)?
+        else {
             self.mesh.pop_point();
             return Ok(false);
         };
-        self.regions.assign(self.mesh, &created, component);
-        self.lfs.push(0.0);
+        self.regions
+            .assign_cone(&created, &cavity.triangles, component);
         // After a whole Bowyer-Watson cavity, Lawson's flips are skipped: each boundary facet
         // is locally Delaunay (the facet test is symmetric, and `c` is outside the
         // circumsphere of every tetrahedron across the boundary, or an input triangle lies
@@ -362,23 +372,108 @@ impl Refiner<'_> {
         (zeros < 3).then_some(at)
     }
 
-    /// `start`, first, and the tetrahedra connected to it across non-input facets whose
-    /// circumsphere strictly holds `c`.
-    fn cavity(&mut self, start: u32, c: &Point) -> Vec<u32> {
-        let cavity = self.search(start, 7, |me, u, i, n| {
-            let q = me.mesh.tets.vertices(n);
-            if me.mesh.tets.mark[n as usize] == 7
-                || q.contains(&INFINITE)
-                || me.regions.on_surface(u, i)
-            {
-                return false;
+    /// The Bowyer–Watson cavity of `c`: `start`, first, and the tetrahedra connected to it
+    /// across non-input facets whose circumsphere strictly holds `c`, with its boundary
+    /// facets; `None` when `c` encroaches (unless `split` is a centroid's): it lies in the
+    /// diametral ball of an input triangle bounding the cavity or of an input edge on its
+    /// boundary, or (ratio splits) in the protecting ball of a cavity vertex. Input triangles
+    /// and edges can only be on the boundary: the cavity never crosses an input triangle, and
+    /// the surfaces are closed. A neighbour the search declines is declined for good (the
+    /// tests do not depend on where it is reached from), so each boundary facet is known, and
+    /// checked, as soon as it is found: an encroaching point stops the search there.
+    fn cavity(&mut self, start: u32, c: &Point, split: Split) -> Option<Cavity> {
+        let mut cavity = Cavity {
+            tets: vec![start],
+            cone: Vec::new(),
+            triangles: Vec::new(),
+            blocked: Vec::new(),
+        };
+        self.mesh.tets.mark[start as usize] = 7;
+        let mut hit = self.in_protecting_ball(start, c, split);
+        let mut k = 0;
+        while !hit && k < cavity.tets.len() {
+            let u = cavity.tets[k];
+            k += 1;
+            for i in 0..4 {
+                hit = self.extend(&mut cavity, u, i, c, split);
+                if hit {
+                    break;
+                }
             }
-            me.mesh.insphere(q, c) == Sign::Positive
-        });
-        for &u in &cavity {
+        }
+        for &u in &cavity.tets {
             self.mesh.tets.mark[u as usize] = 0;
         }
-        cavity
+        (!hit).then_some(cavity)
+    }
+
+    /// Takes the neighbour across facet `i` of the cavity's tetrahedron `u` into `cavity`, or
+    /// notes that facet as a boundary facet; whether `c` encroaches what was found.
+    fn extend(&mut self, cavity: &mut Cavity, u: u32, i: usize, c: &Point, split: Split) -> bool {
+        let n = self.mesh.tets.neighbor(u, i);
+        if self.mesh.tets.mark[n as usize] == 7 {
+            return false;
+        }
+        let triangle = self.regions.triangle(u, i);
+        let surface = triangle != NOT_INPUT;
+        let q = self.mesh.tets.vertices(n);
+        if !surface && !q.contains(&INFINITE) && self.mesh.insphere(q, c) == Sign::Positive {
+            self.mesh.tets.mark[n as usize] = 7;
+            cavity.tets.push(n);
+            return self.in_protecting_ball(n, c, split);
+        }
+        let f = self.mesh.facet(u, i);
+        if split != Split::Centroid && self.in_diametral_ball(f, surface, c) {
+            return true;
+        }
+        self.add_boundary_facet(cavity, u, i, f, triangle, c);
+        false
+    }
+
+    /// Notes facet `i` of `u`, `f`, input triangle `triangle`, as a boundary facet of
+    /// `cavity` seen from `c`.
+    fn add_boundary_facet(
+        &self,
+        cavity: &mut Cavity,
+        u: u32,
+        i: usize,
+        f: [u32; 3],
+        triangle: u32,
+        c: &Point,
+    ) {
+        if self.mesh.orient_point(f, c) == Sign::Positive {
+            cavity.cone.push((f, self.mesh.tets.glued(u, i)));
+            cavity.triangles.push(triangle);
+        } else {
+            cavity.blocked.push(u);
+        }
+    }
+
+    /// Whether `c` lies in the diametral ball of the input triangle `f` (when `surface`) or
+    /// of an input edge of `f`.
+    fn in_diametral_ball(&self, f: [u32; 3], surface: bool, c: &Point) -> bool {
+        if surface {
+            let p = f.map(|x| self.mesh.point(x));
+            let center = triangle_circumcenter(p);
+            if dist2(c, &center) < dist2(p[0], &center) {
+                return true;
+            }
+        }
+        // The diametral-ball test first: it is cheaper than the lookup and rarely holds.
+        (0..3).any(|k| {
+            let (x, y) = (f[k], f[(k + 1) % 3]);
+            let (a, b) = (self.mesh.point(x), self.mesh.point(y));
+            dot(&sub(a, c), &sub(b, c)) < 0.0 && self.surface.edge(x, y)
+        })
+    }
+
+    /// Whether `c`, a ratio split, lies in the protecting ball of a vertex of `u`.
+    fn in_protecting_ball(&self, u: u32, c: &Point, split: Split) -> bool {
+        split == Split::Ratio
+            && self.mesh.tets.vertices(u).iter().any(|&x| {
+                let r = self.lfs.get(x as usize);
+                r.is_some_and(|&r| dist(c, self.mesh.point(x)) <= r)
+            })
     }
 
     /// Breadth-first search from `start` across facets: `n`, across facet `i` of `u`, is
@@ -406,53 +501,6 @@ impl Refiner<'_> {
         found
     }
 
-    /// Whether `c` lies in the diametral ball of an input triangle bounding the cavity or of
-    /// an input edge in it, or (ratio splits) in the protecting ball of a cavity vertex; the
-    /// tetrahedra `cavity[from..]` are looked at (the others were). Input triangles and edges
-    /// can only be on the cavity's boundary: the cavity never crosses an input triangle, and
-    /// the surfaces are closed, so only the boundary facets and their edges are looked up.
-    fn encroaches(&mut self, cavity: &[u32], from: usize, c: &Point, split: Split) -> bool {
-        for &u in cavity {
-            self.mesh.tets.mark[u as usize] = 7;
-        }
-        let hit = cavity[from..]
-            .iter()
-            .any(|&u| self.encroached_from(u, c, split));
-        for &u in cavity {
-            self.mesh.tets.mark[u as usize] = 0;
-        }
-        hit
-    }
-
-    /// [`Refiner::encroaches`] for one tetrahedron `u` of the marked cavity.
-    fn encroached_from(&self, u: u32, c: &Point, split: Split) -> bool {
-        let v = self.mesh.tets.vertices(u);
-        for i in 0..4 {
-            if self.mesh.tets.mark[self.mesh.tets.neighbor(u, i) as usize] == 7 {
-                continue;
-            }
-            let f = self.mesh.facet(u, i);
-            if self.regions.on_surface(u, i) {
-                let p = f.map(|x| self.mesh.point(x));
-                let center = triangle_circumcenter(p);
-                if dist2(c, &center) < dist2(p[0], &center) {
-                    return true;
-                }
-            }
-            // The diametral-ball test first: it is cheaper than the lookup and rarely holds.
-            for k in 0..3 {
-                let (x, y) = (f[k], f[(k + 1) % 3]);
-                let (a, b) = (self.mesh.point(x), self.mesh.point(y));
-                if dot(&sub(a, c), &sub(b, c)) < 0.0 && self.surface.edge(x, y) {
-                    return true;
-                }
-            }
-        }
-        split == Split::Ratio
-            && v.iter()
-                .any(|&x| dist(c, self.mesh.point(x)) <= self.lfs[x as usize])
-    }
-
     /// Whether `c` would be joined to a vertex of the cavity's boundary `cone` by an edge
     /// shorter than the shortest edge of tetrahedron `t`, whose ratio it is meant to fix. In a
     /// Delaunay mesh it never is (the circumsphere is empty); where the surface or unflippable
@@ -467,54 +515,52 @@ impl Refiner<'_> {
     }
 
     /// Shrinks `cavity` (always keeping `start`) until every boundary facet sees `c` on its
-    /// positive side and every cavity vertex is on the boundary; returns the boundary facets,
-    /// each with the facet glued to it outside, or `None` when `start` itself would have to
-    /// go.
-    fn star_shaped(
-        &mut self,
-        start: u32,
-        cavity: &mut Vec<u32>,
-        c: &Point,
-    ) -> Option<Vec<([u32; 3], u32)>> {
-        loop {
-            for &u in cavity.iter() {
+    /// positive side and every cavity vertex is on the boundary, renewing its boundary; false
+    /// when `start` itself would have to go.
+    fn star_shaped(&mut self, start: u32, cavity: &mut Cavity, c: &Point) -> bool {
+        while !cavity.blocked.is_empty() {
+            // The blocked tetrahedra go, and those no longer reachable from `start`.
+            for &u in &cavity.tets {
                 self.mesh.tets.mark[u as usize] = 7;
             }
-            let mut facets = Vec::new();
-            let mut blocked = Vec::new();
-            for &u in cavity.iter() {
-                for i in 0..4 {
-                    if self.mesh.tets.mark[self.mesh.tets.neighbor(u, i) as usize] == 7 {
-                        continue;
-                    }
-                    let f = self.mesh.facet(u, i);
-                    if self.mesh.orient_point(f, c) == Sign::Positive {
-                        facets.push((f, self.mesh.tets.glued(u, i)));
-                    } else {
-                        blocked.push(u);
-                    }
-                }
-            }
-            if blocked.is_empty() {
-                for &u in cavity.iter() {
-                    self.mesh.tets.mark[u as usize] = 0;
-                }
-                // Every cavity vertex must stay, on a boundary facet. The boundary, every
-                // facet seeing `c` inside, is a sphere around it: `F / 2 + 2` vertices.
-                let on_boundary = facets.len() / 2 + 2;
-                return (self.distinct_vertices(cavity) == on_boundary).then_some(facets);
-            }
-            for &u in &blocked {
+            for &u in &cavity.blocked {
                 self.mesh.tets.mark[u as usize] = 0;
             }
             if self.mesh.tets.mark[start as usize] != 7 {
-                for &u in cavity.iter() {
+                for &u in &cavity.tets {
                     self.mesh.tets.mark[u as usize] = 0;
                 }
-                return None;
+                return false;
             }
-            self.reachable(start, cavity);
+            self.reachable(start, &mut cavity.tets);
+            self.boundary(cavity, c);
         }
+        // Every cavity vertex must stay, on a boundary facet. The boundary, every facet
+        // seeing `c` inside, is a sphere around it: `F / 2 + 2` vertices.
+        self.distinct_vertices(&cavity.tets) == cavity.cone.len() / 2 + 2
+    }
+
+    /// Finds the boundary facets of `cavity.tets` anew.
+    fn boundary(&mut self, cavity: &mut Cavity, c: &Point) {
+        cavity.cone.clear();
+        cavity.triangles.clear();
+        cavity.blocked.clear();
+        let tets = std::mem::take(&mut cavity.tets);
+        for &u in &tets {
+            self.mesh.tets.mark[u as usize] = 7;
+        }
+        for &u in &tets {
+            for i in 0..4 {
+                if self.mesh.tets.mark[self.mesh.tets.neighbor(u, i) as usize] != 7 {
+                    let f = self.mesh.facet(u, i);
+                    self.add_boundary_facet(cavity, u, i, f, self.regions.triangle(u, i), c);
+                }
+            }
+        }
+        for &u in &tets {
+            self.mesh.tets.mark[u as usize] = 0;
+        }
+        cavity.tets = tets;
     }
 
     /// The number of distinct vertices of the tetrahedra `cavity`.
@@ -685,8 +731,8 @@ impl Refiner<'_> {
 
     /// The protecting-ball radius of every input vertex (TetGen's feature size with `-Y`):
     /// the distance to the nearest other input vertex, input edge or input triangle of its
-    /// link, the latter two only where the vertex projects inside them; 0 for the others.
-    /// The nearest vertex is found from every tetrahedron's edges; the input triangles from
+    /// link, the latter two only where the vertex projects inside them; 0 for those not in
+    /// the mesh. The nearest vertex is found from every tetrahedron's edges; the input triangles from
     /// where the regions know them: both tetrahedra of one have it in their apex's link,
     /// and every vertex of the ring of one of its sides has that side in its link (every
     /// input edge is a side of an input triangle). Squared distances are compared, and the
@@ -738,9 +784,9 @@ impl Refiner<'_> {
                 });
             }
         }
-        (0..n as u32)
+        (0..n_input)
             .map(|v| {
-                if input(v) && mesh.in_mesh(v) {
+                if mesh.in_mesh(v) {
                     nearest2[v as usize].sqrt().min(nearest_facet[v as usize])
                 } else {
                     0.0
