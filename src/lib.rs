@@ -11,6 +11,7 @@
 //! - [`recovery`]: tetrahedralization of a triangulated surface, every triangle kept;
 //! - [`mesh2d`]: planar Delaunay and conforming (Pébay) triangulations;
 //! - [`optimize`]: sliver removal after refinement (exudation);
+//! - [`prefetch`]: cache hints for the searches whose next steps are known ahead;
 //! - [`mesh`]: the result type handed to users, and its [`quality`] report;
 //! - `ffi`: the C ABI, a panic boundary around every exported function.
 
@@ -24,6 +25,7 @@ pub mod mesh;
 pub mod mesh2d;
 pub mod optimize;
 pub mod predicates;
+pub mod prefetch;
 pub mod quality;
 pub mod recovery;
 pub mod refine;

@@ -114,8 +114,8 @@ pub fn min_dihedral(p: [P; 4]) -> f64 {
 
 /// Circumradius over shortest edge of the tetrahedron `p`; infinite when it is flat. Squared
 /// lengths throughout and one square root (refinement measures every tetrahedron it makes).
-pub fn radius_edge(p: [P; 4]) -> f64 {
-    let (u, v, w) = edges_from_first(&p);
+pub fn radius_edge(p: [&P; 4]) -> f64 {
+    let (u, v, w) = (sub(p[1], p[0]), sub(p[2], p[0]), sub(p[3], p[0]));
     ratio_from(circumradius2(u, v, w), u, v, w)
 }
 

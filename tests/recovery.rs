@@ -722,7 +722,7 @@ fn improving_32_flips_leave_tetrahedra_above_the_bound_only_on_the_surface() {
             .collect()
     };
     let (points, used) = random_points(0x3_2f12, 200);
-    let ratio = |mesh: &TetMesh, q: [u32; 4]| radius_edge(q.map(|v| *mesh.point(v)));
+    let ratio = |mesh: &TetMesh, q: [u32; 4]| radius_edge(q.map(|v| mesh.point(v)));
     let mut counts = Vec::new();
     let first_half: Vec<bool> = (0..200).map(|v| v < 100).collect();
     for on_surface in [None, Some(&first_half[..])] {

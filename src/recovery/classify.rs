@@ -77,6 +77,11 @@ impl Regions {
         self.input.triangle[t as usize][i]
     }
 
+    /// Asks the processor to bring what [`Regions::triangle`] reads of `t` into the cache.
+    pub fn prefetch(&self, t: u32) {
+        crate::prefetch::prefetch(&self.input.triangle, t as usize);
+    }
+
     /// One facet `(t, i)` per bounding triangle.
     pub fn surface_facets(&self) -> &[(u32, usize)] {
         &self.input.at

@@ -562,7 +562,7 @@ fn improving_32_flip(
         if worst(&mut new.into_iter()) <= worst(&mut old.into_iter()) {
             return false;
         }
-        let ratio = |q: [u32; 4]| radius_edge(q.map(|v| *mesh.point(v)));
+        let ratio = |q: [u32; 4]| radius_edge(q.map(|v| mesh.point(v)));
         let on_surface = |x: u32| bound.on_surface.and_then(|on| on.get(x as usize)) == Some(&true);
         new.iter().all(|&q| {
             let r = ratio(q);

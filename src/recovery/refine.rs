@@ -420,6 +420,10 @@ impl Refiner<'_> {
         if !surface && !q.contains(&INFINITE) && self.mesh.insphere(q, c) == Sign::Positive {
             self.mesh.tets.mark[n as usize] = 7;
             cavity.tets.push(n);
+            self.regions.prefetch(n);
+            for j in 0..4 {
+                self.mesh.tets.prefetch(self.mesh.tets.neighbor(n, j));
+            }
             return self.in_protecting_ball(n, c, split);
         }
         let f = self.mesh.facet(u, i);
@@ -825,7 +829,7 @@ fn well_conditioned_circumcenter(p: &[Point; 4]) -> Point {
 
 /// Circumradius over shortest edge of tetrahedron `t` (infinite when flat).
 fn radius_edge_ratio(mesh: &TetMesh, t: u32) -> f64 {
-    crate::quality::radius_edge(mesh.tets.vertices(t).map(|v| *mesh.point(v)))
+    crate::quality::radius_edge(mesh.tets.vertices(t).map(|v| mesh.point(v)))
 }
 
 /// Squared distance from `p` to segment `ab` where `p` projects inside it, else infinity.

@@ -698,7 +698,7 @@ fn relocate(mesh: &mut TetMesh, s: u32) {
         [0, 1, 2].map(|k| link.iter().map(|&v| mesh.point(v)[k]).sum::<f64>() / link.len() as f64);
     let worst = |mesh: &TetMesh| {
         star.iter()
-            .map(|&q| crate::quality::radius_edge(q.map(|v| *mesh.point(v))))
+            .map(|&q| crate::quality::radius_edge(q.map(|v| mesh.point(v))))
             .fold(0.0, f64::max)
     };
     let at = *mesh.point(s);

@@ -78,6 +78,12 @@ impl Tets {
         self.glued(t, i) >> 2
     }
 
+    /// Asks the processor to bring tetrahedron `t` into the cache, for a visit soon.
+    #[inline]
+    pub fn prefetch(&self, t: u32) {
+        crate::prefetch::prefetch(&self.data, 8 * t as usize);
+    }
+
     /// Local position of the infinite vertex, if any.
     #[inline]
     pub fn infinite_position(&self, t: u32) -> Option<usize> {

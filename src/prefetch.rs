@@ -1,0 +1,17 @@
+//! Cache prefetch hints for searches whose next steps are known a little ahead (the
+//! breadth-first cavity searches): a hint lets the memory loads of the next tetrahedra overlap
+//! the work on the current ones. A hint changes no result.
+
+/// Asks the processor to bring `items[i]` into the cache; nothing when `i` is out of bounds
+/// or the target has no prefetch instruction.
+#[inline]
+pub fn prefetch<T>(items: &[T], i: usize) {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(x) = items.get(i) {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        // SAFETY: a prefetch never faults, and the pointer is to a live element.
+        unsafe { _mm_prefetch::<_MM_HINT_T0>((x as *const T).cast()) };
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = (items, i);
+}
