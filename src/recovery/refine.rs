@@ -133,6 +133,7 @@ pub fn refine(
         queue: BadQueue::new(),
         flips_left: 0,
         unflipped: Vec::new(),
+        cavity: Cavity::default(),
         seen: Vec::new(),
         cavities: 0,
     };
@@ -140,6 +141,7 @@ pub fn refine(
 }
 
 /// A Bowyer–Watson cavity as [`Refiner::cavity`] finds it.
+#[derive(Default)]
 struct Cavity {
     /// Its tetrahedra, the one holding the point first.
     tets: Vec<u32>,
@@ -150,6 +152,15 @@ struct Cavity {
     triangles: Vec<u32>,
     /// The tetrahedra with a boundary facet that does not (the cavity must be shrunk).
     blocked: Vec<u32>,
+}
+
+impl Cavity {
+    fn clear(&mut self) {
+        self.tets.clear();
+        self.cone.clear();
+        self.triangles.clear();
+        self.blocked.clear();
+    }
 }
 
 /// The protected edges as refinement asks for them: a flag per vertex lying on them answers
@@ -194,6 +205,8 @@ struct Refiner<'a> {
     /// Edges of facets Lawson's flips found not locally Delaunay and could not flip, with a
     /// tetrahedron holding them and its vertices then.
     unflipped: Vec<(u32, [u32; 4], [u32; 2])>,
+    /// The lists of the cavity under way, kept from point to point.
+    cavity: Cavity,
     /// Per vertex, the last cavity that counted it (see [`Refiner::star_shaped`]).
     seen: Vec<u32>,
     cavities: u32,
@@ -312,11 +325,27 @@ impl Refiner<'_> {
         let Some(start) = self.locate(t, &c) else {
             return Ok(false);
         };
-        let Some(mut cavity) = self.cavity(start, &c, split) else {
+        // The cavity's lists are the refiner's, reused from point to point.
+        let mut cavity = std::mem::take(&mut self.cavity);
+        let inserted = self.insert_from(t, start, c, split, &mut cavity);
+        self.cavity = cavity;
+        inserted
+    }
+
+    /// [`Refiner::insert`] from `start`, the tetrahedron holding `c`, in `cavity`.
+    fn insert_from(
+        &mut self,
+        t: u32,
+        start: u32,
+        c: Point,
+        split: Split,
+        cavity: &mut Cavity,
+    ) -> Result<bool> {
+        if !self.cavity(start, &c, split, cavity) {
             return Ok(false);
-        };
+        }
         let full = cavity.tets.len();
-        if !self.star_shaped(start, &mut cavity, &c) {
+        if !self.star_shaped(start, cavity, &c) {
             return Ok(false);
         }
         let shrunk = cavity.tets.len() != full;
@@ -372,22 +401,18 @@ impl Refiner<'_> {
         (zeros < 3).then_some(at)
     }
 
-    /// The Bowyer–Watson cavity of `c`: `start`, first, and the tetrahedra connected to it
-    /// across non-input facets whose circumsphere strictly holds `c`, with its boundary
-    /// facets; `None` when `c` encroaches (unless `split` is a centroid's): it lies in the
-    /// diametral ball of an input triangle bounding the cavity or of an input edge on its
-    /// boundary, or (ratio splits) in the protecting ball of a cavity vertex. Input triangles
-    /// and edges can only be on the boundary: the cavity never crosses an input triangle, and
-    /// the surfaces are closed. A neighbour the search declines is declined for good (the
+    /// Finds in `cavity` the Bowyer–Watson cavity of `c`: `start`, first, and the tetrahedra
+    /// connected to it across non-input facets whose circumsphere strictly holds `c`, with
+    /// its boundary facets; false when `c` encroaches (unless `split` is a centroid's): it
+    /// lies in the diametral ball of an input triangle bounding the cavity or of an input
+    /// edge on its boundary, or (ratio splits) in the protecting ball of a cavity vertex.
+    /// Input triangles and edges can only be on the boundary: the cavity never crosses an
+    /// input triangle, and the surfaces are closed. A neighbour the search declines is declined for good (the
     /// tests do not depend on where it is reached from), so each boundary facet is known, and
     /// checked, as soon as it is found: an encroaching point stops the search there.
-    fn cavity(&mut self, start: u32, c: &Point, split: Split) -> Option<Cavity> {
-        let mut cavity = Cavity {
-            tets: vec![start],
-            cone: Vec::new(),
-            triangles: Vec::new(),
-            blocked: Vec::new(),
-        };
+    fn cavity(&mut self, start: u32, c: &Point, split: Split, cavity: &mut Cavity) -> bool {
+        cavity.clear();
+        cavity.tets.push(start);
         self.mesh.tets.mark[start as usize] = 7;
         let mut hit = self.in_protecting_ball(start, c, split);
         let mut k = 0;
@@ -395,7 +420,7 @@ impl Refiner<'_> {
             let u = cavity.tets[k];
             k += 1;
             for i in 0..4 {
-                hit = self.extend(&mut cavity, u, i, c, split);
+                hit = self.extend(cavity, u, i, c, split);
                 if hit {
                     break;
                 }
@@ -404,7 +429,7 @@ impl Refiner<'_> {
         for &u in &cavity.tets {
             self.mesh.tets.mark[u as usize] = 0;
         }
-        (!hit).then_some(cavity)
+        !hit
     }
 
     /// Takes the neighbour across facet `i` of the cavity's tetrahedron `u` into `cavity`, or
