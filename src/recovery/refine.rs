@@ -407,9 +407,10 @@ impl Refiner<'_> {
     /// lies in the diametral ball of an input triangle bounding the cavity or of an input
     /// edge on its boundary, or (ratio splits) in the protecting ball of a cavity vertex.
     /// Input triangles and edges can only be on the boundary: the cavity never crosses an
-    /// input triangle, and the surfaces are closed. A neighbour the search declines is declined for good (the
-    /// tests do not depend on where it is reached from), so each boundary facet is known, and
-    /// checked, as soon as it is found: an encroaching point stops the search there.
+    /// input triangle, and the surfaces are closed. A neighbour the search declines is
+    /// declined for good (the tests do not depend on where it is reached from), so each
+    /// boundary facet is known, and checked, as soon as it is found: an encroaching point
+    /// stops the search there.
     fn cavity(&mut self, start: u32, c: &Point, split: Split, cavity: &mut Cavity) -> bool {
         cavity.clear();
         cavity.tets.push(start);
@@ -445,6 +446,8 @@ impl Refiner<'_> {
         if !surface && !q.contains(&INFINITE) && self.mesh.insphere(q, c) == Sign::Positive {
             self.mesh.tets.mark[n as usize] = 7;
             cavity.tets.push(n);
+            // Its row and neighbours are read when the search comes to it, a few
+            // tetrahedra later: asked for now, their loads overlap the work until then.
             self.regions.prefetch(n);
             for j in 0..4 {
                 self.mesh.tets.prefetch(self.mesh.tets.neighbor(n, j));
@@ -761,11 +764,11 @@ impl Refiner<'_> {
     /// The protecting-ball radius of every input vertex (TetGen's feature size with `-Y`):
     /// the distance to the nearest other input vertex, input edge or input triangle of its
     /// link, the latter two only where the vertex projects inside them; 0 for those not in
-    /// the mesh. The nearest vertex is found from every tetrahedron's edges; the input triangles from
-    /// where the regions know them: both tetrahedra of one have it in their apex's link,
-    /// and every vertex of the ring of one of its sides has that side in its link (every
-    /// input edge is a side of an input triangle). Squared distances are compared, and the
-    /// square root (monotone) taken once per vertex.
+    /// the mesh. The nearest vertex is found from every tetrahedron's edges; the input
+    /// triangles from where the regions know them: both tetrahedra of one have it in their
+    /// apex's link, and every vertex of the ring of one of its sides has that side in its
+    /// link (every input edge is a side of an input triangle). Squared distances are
+    /// compared, and the square root (monotone) taken once per vertex.
     fn protecting_radii(&self, n_input: u32) -> Vec<f64> {
         let mesh = &*self.mesh;
         let n = mesh.points.len();
