@@ -15,3 +15,18 @@ pub fn prefetch<T>(items: &[T], i: usize) {
     #[cfg(not(target_arch = "x86_64"))]
     let _ = (items, i);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::prefetch;
+
+    #[test]
+    fn a_hint_out_of_bounds_is_ignored() {
+        let items = vec![1u32, 2, 3];
+        for i in [0, 2, 3, usize::MAX] {
+            prefetch(&items, i);
+        }
+        prefetch::<u64>(&[], 0);
+        assert_eq!(items, [1, 2, 3]);
+    }
+}
