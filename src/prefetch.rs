@@ -22,11 +22,11 @@ mod tests {
 
     #[test]
     fn a_hint_out_of_bounds_is_ignored() {
-        let items = vec![1u32, 2, 3];
+        // Fails by panicking if a hint indexes instead of asking `get`.
+        let items = [1u32, 2, 3];
         for i in [0, 2, 3, usize::MAX] {
             prefetch(&items, i);
         }
         prefetch::<u64>(&[], 0);
-        assert_eq!(items, [1, 2, 3]);
     }
 }

@@ -115,7 +115,7 @@ pub fn min_dihedral(p: [P; 4]) -> f64 {
 /// Circumradius over shortest edge of the tetrahedron `p`; infinite when it is flat. Squared
 /// lengths throughout and one square root (refinement measures every tetrahedron it makes).
 pub fn radius_edge(p: [&P; 4]) -> f64 {
-    let (u, v, w) = (sub(p[1], p[0]), sub(p[2], p[0]), sub(p[3], p[0]));
+    let (u, v, w) = edges_from_first(p);
     ratio_from(circumradius2(u, v, w), u, v, w)
 }
 
@@ -143,8 +143,8 @@ pub fn shortest_edge(p: &[P; 4]) -> f64 {
 }
 
 /// The edges `u`, `v`, `w` from `p[0]` to the other vertices.
-fn edges_from_first(p: &[P; 4]) -> (P, P, P) {
-    (sub(&p[1], &p[0]), sub(&p[2], &p[0]), sub(&p[3], &p[0]))
+fn edges_from_first(p: [&P; 4]) -> (P, P, P) {
+    (sub(p[1], p[0]), sub(p[2], p[0]), sub(p[3], p[0]))
 }
 
 /// The squared circumradius of the tetrahedron with edges `u`, `v`, `w` from a vertex: the
@@ -175,7 +175,7 @@ pub fn tetrahedron(p: [P; 4]) -> TetQuality {
     let corners = [&p[0], &p[1], &p[2], &p[3]];
     let volume = tet_volume(corners).abs();
     let area: f64 = n.iter().map(|v| 0.5 * norm(v)).sum();
-    let (u, v, w) = edges_from_first(&p);
+    let (u, v, w) = edges_from_first(p.each_ref());
     let circumradius2 = circumradius2(u, v, w);
     let circumradius = circumradius2.sqrt();
     let inradius = 3.0 * volume / area;

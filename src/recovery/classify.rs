@@ -42,13 +42,18 @@ impl Regions {
     /// crossing a bounding triangle, in component `c`, and notes which of their facets are
     /// bounding triangles.
     pub fn assign(&mut self, mesh: &TetMesh, created: &[u32], c: u32) {
+        self.put(created, c);
+        self.input.renew(mesh, created);
+    }
+
+    /// Puts the tetrahedra `created` in component `c`.
+    fn put(&mut self, created: &[u32], c: u32) {
         for &t in created {
             if self.component.len() <= t as usize {
                 self.component.resize(t as usize + 1, u32::MAX);
             }
             self.component[t as usize] = c;
         }
-        self.input.renew(mesh, created);
     }
 
     /// [`Regions::assign`] for the cone of [`TetMesh::try_replace_by_cone`]: facet 3 of
@@ -57,11 +62,8 @@ impl Regions {
     /// tetrahedra of the cone. (What [`Regions::assign`] would look up outside, at random
     /// places of memory, the caller had at hand.)
     pub fn assign_cone(&mut self, created: &[u32], triangles: &[u32], c: u32) {
+        self.put(created, c);
         for (&t, &k) in created.iter().zip(triangles) {
-            if self.component.len() <= t as usize {
-                self.component.resize(t as usize + 1, u32::MAX);
-            }
-            self.component[t as usize] = c;
             self.input.set(t, [NOT_INPUT, NOT_INPUT, NOT_INPUT, k]);
         }
     }
