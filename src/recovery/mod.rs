@@ -244,6 +244,26 @@ struct Attempt {
     /// The subfaces around each point added on the surface are made Delaunay in their input
     /// triangle ([`Partition::delaunay_around`]).
     delaunay: bool,
+    /// The attempt stops at a quarter as many points as triangles ([`Attempt::budget`]).
+    short: bool,
+}
+
+impl Attempt {
+    /// How many points the attempt may add for `triangles` triangles to recover. Two per
+    /// triangle, far more than any input that meshes needs (26 for 980 triangles at most in
+    /// the C test), so that an attempt that goes astray stops soon. The middle attempts, with
+    /// points inside first, follow a failure: a quarter as many points as triangles (anchor
+    /// meshes well within it), so that an input they cannot mesh either fails in seconds.
+    /// The last has the whole budget again: Chazelle's polyhedron with five notches a side
+    /// (268 triangles) meshes so, with 137 points added (the quarter is 131), 35 of them left
+    /// inside at the end; with the quarter it stopped.
+    fn budget(self, triangles: usize) -> usize {
+        if self.short {
+            triangles / 4 + 64
+        } else {
+            2 * triangles + 64
+        }
+    }
 }
 
 /// Points on the surface alone first; where they cannot do it, points inside the volume
@@ -260,26 +280,31 @@ const ATTEMPTS: [Attempt; 5] = [
         interior: false,
         shrink: false,
         delaunay: false,
+        short: false,
     },
     Attempt {
         interior: true,
         shrink: false,
         delaunay: false,
+        short: true,
     },
     Attempt {
         interior: true,
         shrink: true,
         delaunay: false,
+        short: true,
     },
     Attempt {
         interior: false,
         shrink: false,
         delaunay: true,
+        short: false,
     },
     Attempt {
         interior: true,
         shrink: false,
         delaunay: true,
+        short: false,
     },
 ];
 
@@ -516,16 +541,7 @@ fn recover_by(
         },
         mut part,
     ) = Start::of(starts, attempt, schedule, input)?;
-    // Two points per triangle, far more than any input that meshes needs (26 for 980
-    // triangles at most in the C test), so that an attempt that goes astray stops soon.
-    // The attempts with points inside first follow a failure: a quarter as many points as
-    // triangles (anchor meshes well within it), so that an input they cannot mesh either
-    // fails in seconds.
-    let budget = if attempt.interior {
-        bounding.len() / 4 + 64
-    } else {
-        2 * bounding.len() + 64
-    };
+    let budget = attempt.budget(bounding.len());
     if let Some((mut progress, missing)) = progress {
         let mut points = Points {
             budget,
