@@ -31,7 +31,8 @@
  * (exactly) are not piecewise linear complexes: skipped, said so.
  *
  * Compared with TetGen, where its result passed the checks and kept -Y's promise: on every
- * generated case without volume bounds, delmesh's Steiner points without refinement <= TetGen's
+ * generated case without volume bounds, and every corpus file but those listed in
+ * more_points_than_tetgen, delmesh's Steiner points without refinement <= TetGen's
  * with -pY (both recover the same boundary with interior points only; with refinement the counts are
  * printed, not compared); with the bound 1.414, delmesh's tetrahedron count within 20% of
  * TetGen's -pq1.414Y where TetGen met its volume bounds and made at least 100
@@ -106,7 +107,7 @@ typedef struct Case {
   const double *holes;
   size_t n_holes;
   int expected_regions;
-  int generated; /* the Steiner comparison applies */
+  int compared; /* the Steiner comparison applies */
 } Case;
 
 enum { TETGEN_PY, TETGEN_PQ, OURS_DEFAULT, OURS_QUALITY, RUNS };
@@ -198,6 +199,14 @@ static int listed(const char *name, const char *const *list, size_t n) {
 
 static int known_limit(const Case *c) {
   return listed(c->name, known_limits, sizeof known_limits / sizeof known_limits[0]);
+}
+
+/* Corpus files on which delmesh keeps more interior points than TetGen -pY adds: the record of
+ * what is still short there (TetGen recovers handle by flips alone). On every other file where
+ * TetGen kept -Y's promise, delmesh's count is asserted to be no larger. */
+static const char *const more_points_than_tetgen[] = {"surfaces/handle.off"};
+static int more_points_listed(const Case *c) {
+  return listed(c->name, more_points_than_tetgen, sizeof more_points_than_tetgen / sizeof more_points_than_tetgen[0]);
 }
 
 static size_t steiner_of(const Case *c, const Output *o) {
@@ -355,7 +364,7 @@ static void run_case(const Case *c) {
     check_note("%s | Steiner points: delmesh %zu (q1.414: %zu), TetGen -pY %zu (-pq1.414Y: %s)", c->name,
                steiner_of(c, &out[OURS_DEFAULT]), out[OURS_QUALITY].ok ? steiner_of(c, &out[OURS_QUALITY]) : 0,
                steiner_of(c, &out[TETGEN_PY]), out[TETGEN_PQ].ok ? "ok" : "failed");
-  if (c->generated && py && out[OURS_DEFAULT].ok) {
+  if (c->compared && py && out[OURS_DEFAULT].ok) {
     size_t ours = steiner_of(c, &out[OURS_DEFAULT]), theirs = steiner_of(c, &out[TETGEN_PY]);
     check_case(ours <= theirs, "%s | Steiner points without refinement: delmesh %zu <= TetGen -pY %zu", c->name, ours,
                theirs);
@@ -373,6 +382,14 @@ static void run_case(const Case *c) {
   for (int k = 0; k < RUNS; k++) output_free(&out[k]);
 }
 
+/* Whether a region seed (x, y, z, label, max volume) bounds volumes: those refine, and the
+ * Steiner comparison is for recovery alone. */
+static int volume_bounds(const double *regions, size_t n_regions) {
+  for (size_t r = 0; r < n_regions; r++)
+    if (regions[5 * r + 4] > 0) return 1;
+  return 0;
+}
+
 static Case case_of_surface(const Surface *s, int generated) {
   Case c;
   memset(&c, 0, sizeof c);
@@ -380,10 +397,7 @@ static Case case_of_surface(const Surface *s, int generated) {
   c.xyz = s->xyz, c.n = s->n, c.tris = s->tris, c.m = s->m;
   c.regions = s->regions, c.n_regions = s->n_regions, c.holes = s->holes, c.n_holes = s->n_holes;
   c.expected_regions = s->expected_regions;
-  /* Volume bounds refine: the Steiner comparison is for recovery alone. */
-  c.generated = generated;
-  for (size_t r = 0; r < s->n_regions; r++)
-    if (s->regions[5 * r + 4] > 0) c.generated = 0;
+  c.compared = generated && !volume_bounds(s->regions, s->n_regions);
   return c;
 }
 
@@ -678,6 +692,7 @@ static void corpus_cases(int small) {
     }
     c.regions = f.regions, c.n_regions = f.n_regions, c.holes = f.holes, c.n_holes = f.n_holes;
     c.expected_regions = 1; /* every closed file of the corpus is one connected solid */
+    c.compared = !more_points_listed(&c) && !volume_bounds(f.regions, f.n_regions);
     run_case(&c);
     surface_file_free(&f);
   }

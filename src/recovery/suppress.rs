@@ -26,7 +26,8 @@
 //! neighbour (the paper's merging), or removed by filling their star, or their star and a few
 //! layers around it, again without them: the recovery of the region's boundary, with no point
 //! allowed, does that when it can. Last, a point left is dissolved by flips where they can
-//! take its edges away one by one ([`dissolve`]).
+//! take its edges away one by one ([`dissolve`]). Where points are left in the kept regions,
+//! all this runs once more with more layers ([`MORE_LAYERS`], [`super::fewer_points`]).
 
 use rustc_hash::FxHashMap as HashMap;
 
@@ -547,7 +548,12 @@ fn bounding_sides(
 /// each point left is removed when its star, or its star and a few layers around it, can be
 /// filled again without it ([`refill`]), and collapses are tried again, a bounded number of
 /// times. The points still left are then dissolved by flips where possible ([`dissolve`]).
-pub fn merge_interior(mesh: &mut TetMesh, protected: &Protected, first: u32) -> Result<()> {
+pub fn merge_interior(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    first: u32,
+    layers: usize,
+) -> Result<()> {
     for _ in 0..REFILL_PASSES {
         loop {
             let mut merged = false;
@@ -560,7 +566,7 @@ pub fn merge_interior(mesh: &mut TetMesh, protected: &Protected, first: u32) -> 
         }
         let mut removed = false;
         for s in left(mesh, first) {
-            for layers in 0..=REFILL_LAYERS {
+            for layers in 0..=layers {
                 if refill(mesh, protected, s, layers)? {
                     removed = true;
                     break;
@@ -648,8 +654,13 @@ fn link(mesh: &TetMesh, ball: &[u32], s: u32) -> Vec<u32> {
     link
 }
 
-/// Layers of tetrahedra around a point's star that [`refill`] adds at most, one at a time.
-const REFILL_LAYERS: usize = 4;
+/// Layers of tetrahedra around a piece ([`fill_piece`]), or around a point's star at first
+/// ([`refill`]), added at most, one at a time.
+pub const REFILL_LAYERS: usize = 4;
+
+/// Layers of tetrahedra around a point's star that [`refill`] adds at most on the mesh a
+/// recovery keeps when points are left there ([`super::fewer_points`]).
+pub const MORE_LAYERS: usize = 6;
 
 /// Passes of [`refill`] over the points left, each after collapses (a removal can make a
 /// neighbour removable).
