@@ -10,13 +10,15 @@
 //! `points`; every live finite tetrahedron is positively oriented; adjacency is symmetric;
 //! `vertex_tet[v]` is a live tetrahedron incident to `v` for every vertex in use;
 //! `failed_rings` holds only failures that the points' current positions make (it is emptied
-//! when a point moves or its number is given back); `bounds` holds every point.
+//! when a point moves or its number is given back); `failed_fills` holds only failures of
+//! surfaces whose key, positions included, it stores; `bounds` holds every point.
 
 use rustc_hash::FxHashSet;
 use smallvec::SmallVec;
 
 use super::by_vertex::ByVertex;
 use super::flips::{FailedRings, Protected};
+use super::suppress::FailedFills;
 use crate::error::{Error, Result};
 use crate::predicates::{insphere, orient3d, BoxFilter, Point, Sign};
 use crate::triangulation::edge_table::EdgeTable;
@@ -68,6 +70,8 @@ pub struct TetMesh {
     changed: bool,
     /// Edge removals known to fail while no point moves.
     pub failed_rings: FailedRings,
+    /// Surfaces known to have no filling without points.
+    pub failed_fills: FailedFills,
     /// A box holding every point (grown as points are added or moved), and the filter of the
     /// predicates for points in it: its bound is fixed by the box, not computed per call
     /// (as the Delaunay triangulation's). A point tested before it is added, outside the
@@ -76,8 +80,8 @@ pub struct TetMesh {
     filter: BoxFilter,
 }
 
-/// A copy without the scratch tables and with no failed ring remembered: those are only
-/// looked up again, the copy meshes as the original would.
+/// A copy without the scratch tables and with no failed ring or filling remembered: those are
+/// only looked up again, the copy meshes as the original would.
 impl Clone for TetMesh {
     fn clone(&self) -> Self {
         TetMesh {
@@ -89,6 +93,7 @@ impl Clone for TetMesh {
             first_added: self.first_added,
             changed: self.changed,
             failed_rings: FailedRings::default(),
+            failed_fills: FailedFills::default(),
             bounds: self.bounds,
             filter: self.filter,
         }
@@ -121,6 +126,7 @@ impl TetMesh {
             first_added: 0,
             changed: false,
             failed_rings: FailedRings::default(),
+            failed_fills: FailedFills::default(),
             bounds: [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]],
             filter: BoxFilter::new(&[0.0; 3], &[0.0; 3]),
         };
