@@ -180,13 +180,13 @@ fn remove_shell(
     let memo = allowed
         .memo_key()
         .and_then(|rule| FailedRings::key(rule, [a, b], ring));
-    if memo.is_some_and(|k| mesh.failed_rings.contains(&k)) {
+    if memo.is_some_and(|k| mesh.failed_rings.0.contains(&k)) {
         return Ok(false);
     }
     let Some((triangles, _)) = best_ring_triangulation(mesh, [a, b], ring, allowed, Goal::Shape)
     else {
         if let Some(k) = memo {
-            mesh.failed_rings.insert(k);
+            mesh.failed_rings.0.insert(k);
         }
         return Ok(false);
     };
@@ -194,41 +194,57 @@ fn remove_shell(
     Ok(true)
 }
 
+/// Searches known to fail, keyed by everything their result depends on: a cache, looked up
+/// before searching again. At most `MOST` keys are held; then all are forgotten and
+/// remembered anew.
+#[derive(Clone, Debug)]
+pub struct Failures<K, const MOST: usize>(FxHashSet<K>);
+
+impl<K, const MOST: usize> Default for Failures<K, MOST> {
+    fn default() -> Self {
+        Failures(FxHashSet::default())
+    }
+}
+
+impl<K: std::hash::Hash + Eq, const MOST: usize> Failures<K, MOST> {
+    pub fn contains<Q>(&self, k: &Q) -> bool
+    where
+        K: std::borrow::Borrow<Q>,
+        Q: std::hash::Hash + Eq + ?Sized,
+    {
+        self.0.contains(k)
+    }
+
+    pub fn insert(&mut self, k: K) {
+        if self.0.len() == MOST {
+            self.0.clear();
+        }
+        self.0.insert(k);
+    }
+}
+
 /// The edges whose ring, under a rule with a name ([`Rule::memo_key`]), has no
 /// triangulation into positive tetrahedra that the rule allows: [`best_ring_triangulation`]
 /// depends on nothing else than the positions of the edge's and the ring's vertices, so its
 /// failures are remembered while no point moves ([`TetMesh::move_point`] forgets them).
 /// Unblocking a segment removes the same edges of the same shells again and again: on
-/// fandisk, 92% of the failed searches had been made before, in the same ring.
+/// fandisk, 92% of the failed searches had been made before, in the same ring. At most
+/// 10,000 (a table of 2^14 entries of 81 bytes, 1.3 MB): Chazelle's polyhedron with three
+/// and four notches a side, past it many times, ran no faster with ten times as many.
 #[derive(Clone, Debug, Default)]
-pub struct FailedRings(FxHashSet<[u32; 4 + FailedRings::RING]>);
+pub struct FailedRings(Failures<[u32; 4 + FailedRings::RING], 10_000>);
 
 impl FailedRings {
     /// Longer rings are not remembered (and rarely met: shells are short).
     const RING: usize = 16;
-    /// At most this many failures are remembered (a table of 2^14 entries of 81 bytes,
-    /// 1.3 MB); then they are forgotten and remembered anew. Chazelle's polyhedron with three
-    /// and four notches a side, past it many times, ran no faster with ten times as many.
-    const MOST: usize = 10_000;
-
-    fn contains(&self, k: &[u32; 4 + Self::RING]) -> bool {
-        self.0.contains(k)
-    }
-
-    fn insert(&mut self, k: [u32; 4 + Self::RING]) {
-        if self.0.len() == Self::MOST {
-            self.0.clear();
-        }
-        self.0.insert(k);
-    }
 
     /// How many failures are remembered.
     pub fn len(&self) -> usize {
-        self.0.len()
+        self.0 .0.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.0.is_empty()
+        self.0 .0.is_empty()
     }
 
     /// The rule's name, the edge and its ring, padded with the infinite vertex (never in
@@ -246,8 +262,8 @@ impl FailedRings {
     /// Forgets every failure (a point moved).
     pub fn clear(&mut self) {
         // Clearing costs the table's capacity, and points are moved in long series.
-        if !self.0.is_empty() {
-            self.0.clear();
+        if !self.is_empty() {
+            self.0 .0.clear();
         }
     }
 }

@@ -256,8 +256,8 @@ impl Attempt {
     /// points inside first, follow a failure: a quarter as many points as triangles (anchor
     /// meshes well within it), so that an input they cannot mesh either fails in seconds.
     /// The last has the whole budget again: Chazelle's polyhedron with five notches a side
-    /// (268 triangles) meshes so, with 137 points added (the quarter is 131), 35 of them left
-    /// inside at the end; with the quarter it stopped.
+    /// (268 triangles) meshes so, with 137 points added (the quarter is 131); with the
+    /// quarter it stopped.
     fn budget(self, triangles: usize) -> usize {
         if self.short {
             triangles / 4 + 64
@@ -308,6 +308,13 @@ const ATTEMPTS: [Attempt; 5] = [
         short: false,
     },
 ];
+
+impl Input<'_> {
+    /// The first point added after the input's and the box's eight corners.
+    fn first_added(&self) -> u32 {
+        self.points.len() as u32 + 8
+    }
+}
 
 /// The self-intersection check of the input, run at most once: when recovery is about to add
 /// its first point on the surface, or when meshing fails. Until then the mesh is a
@@ -561,7 +568,7 @@ fn recover_by(
     suppress::suppress_all(&mut mesh, &mut part, &normals, first_hull)?;
     // The copies serve attempts after a failed recovery; past it, they are freed.
     starts.attempts.clear();
-    let first = points.len() as u32 + 8;
+    let first = input.first_added();
     suppress::merge_interior(&mut mesh, &part.protected, first, suppress::REFILL_LAYERS)?;
     suppress::relocate_interior(&mut mesh, &part, first);
     fewer_points(input, classified(input, mesh, part)?)
@@ -580,7 +587,7 @@ fn fewer_points(input: &Input, recovered: Recovered) -> Result<Recovered> {
         return Ok(recovered);
     }
     let Recovered { mut mesh, part, .. } = recovered;
-    let first = input.points.len() as u32 + 8;
+    let first = input.first_added();
     suppress::merge_interior(&mut mesh, &part.protected, first, suppress::MORE_LAYERS)?;
     suppress::relocate_interior(&mut mesh, &part, first);
     classified(input, mesh, part)
@@ -589,13 +596,12 @@ fn fewer_points(input: &Input, recovered: Recovered) -> Result<Recovered> {
 /// The regions of the recovered `mesh` and the count of the points added in them.
 fn classified(input: &Input, mut mesh: TetMesh, part: Partition) -> Result<Recovered> {
     let Input {
-        points,
         bounding,
         first_hull,
         options,
         ..
     } = *input;
-    let first = points.len() as u32 + 8;
+    let first = input.first_added();
     // The hull's triangles are in pieces where points stayed on them.
     let facets: Vec<[u32; 3]> = if options.keep_convex_hull {
         let pieces = part

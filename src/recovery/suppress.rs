@@ -29,9 +29,9 @@
 //! take its edges away one by one ([`dissolve`]). Where points are left in the kept regions,
 //! all this runs once more with more layers ([`MORE_LAYERS`], [`super::fewer_points`]).
 
-use rustc_hash::{FxHashMap as HashMap, FxHashSet};
+use rustc_hash::FxHashMap as HashMap;
 
-use super::flips::{remove_edge_deep, Any, Protected};
+use super::flips::{remove_edge_deep, Any, Failures, Protected};
 use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
 use super::until_stable;
@@ -868,7 +868,7 @@ fn refill(mesh: &mut TetMesh, protected: &Protected, s: u32, layers: usize) -> R
 /// The tetrahedra filling the closed surface `boundary` (facets of `mesh`) with no added
 /// point ([`super::fill_without_points`]), every one positive; `None` if there are none.
 fn fill_boundary(mesh: &mut TetMesh, boundary: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
-    let key = FailedFills::key(mesh, boundary);
+    let key = fill_key(mesh, boundary);
     if mesh.failed_fills.contains(&key) {
         return None;
     }
@@ -883,37 +883,21 @@ fn fill_boundary(mesh: &mut TetMesh, boundary: &[[u32; 3]]) -> Option<Vec<[u32; 
 /// boundary's triangles, in order, and the positions of their vertices, which the key holds
 /// (points move between the removals), so a failure is not searched again. Refilling the
 /// stars grown by layers meets the same boundaries again and again: on anchor, 959 of the
-/// 1749 fillings were failures made before, 1.58 s of its 5.3 s.
-#[derive(Clone, Debug, Default)]
-pub struct FailedFills(FxHashSet<Vec<u64>>);
+/// 1749 fillings were failures made before, 1.58 s of its 5.3 s. At most 4096 keys (one
+/// takes 12 words per triangle).
+pub type FailedFills = Failures<Vec<u64>, 4096>;
 
-impl FailedFills {
-    /// At most this many failures are remembered; then they are forgotten and remembered
-    /// anew (a key takes 12 words per triangle).
-    const MOST: usize = 4096;
-
-    fn contains(&self, k: &[u64]) -> bool {
-        self.0.contains(k)
-    }
-
-    fn insert(&mut self, k: Vec<u64>) {
-        if self.0.len() == Self::MOST {
-            self.0.clear();
+/// The key of `boundary` in [`FailedFills`]: the triangles' vertices in order, each followed
+/// by its coordinates' bits.
+fn fill_key(mesh: &TetMesh, boundary: &[[u32; 3]]) -> Vec<u64> {
+    let mut k = Vec::with_capacity(boundary.len() * 12);
+    for &v in boundary.iter().flatten() {
+        k.push(u64::from(v));
+        if v != crate::triangulation::tets::INFINITE {
+            k.extend(mesh.point(v).map(f64::to_bits));
         }
-        self.0.insert(k);
     }
-
-    /// The triangles' vertices in order, each followed by its coordinates' bits.
-    fn key(mesh: &TetMesh, boundary: &[[u32; 3]]) -> Vec<u64> {
-        let mut k = Vec::with_capacity(boundary.len() * 12);
-        for &v in boundary.iter().flatten() {
-            k.push(u64::from(v));
-            if v != crate::triangulation::tets::INFINITE {
-                k.extend(mesh.point(v).map(f64::to_bits));
-            }
-        }
-        k
-    }
+    k
 }
 
 /// [`fill_boundary`] searched.
@@ -999,7 +983,7 @@ mod tests {
     fn a_failed_filling_is_remembered_with_its_positions() {
         let (points, boundary) = schonhardt();
         let mut mesh = TetMesh::delaunay(points, &(0..6).collect::<Vec<u32>>()).unwrap();
-        let key = FailedFills::key(&mesh, &boundary);
+        let key = fill_key(&mesh, &boundary);
         assert!(fill_boundary(&mut mesh, &boundary).is_none());
         assert!(mesh.failed_fills.contains(&key));
         assert!(fill_boundary(&mut mesh, &boundary).is_none());
@@ -1009,9 +993,7 @@ mod tests {
             let a = (f64::from(k) * 120.0 - 30.0).to_radians();
             mesh.move_point(3 + k, [a.cos(), a.sin(), 1.0]);
         }
-        assert!(!mesh
-            .failed_fills
-            .contains(&FailedFills::key(&mesh, &boundary)));
+        assert!(!mesh.failed_fills.contains(&fill_key(&mesh, &boundary)));
         assert!(fill_boundary(&mut mesh, &boundary).is_some());
     }
 
