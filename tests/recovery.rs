@@ -756,7 +756,7 @@ fn improving_32_flips_leave_tetrahedra_above_the_bound_only_on_the_surface() {
 #[test]
 fn interior_points_are_merged_or_refilled_away() {
     use delmesh::recovery::flips::Protected;
-    use delmesh::recovery::suppress::{merge_interior, REFILL_LAYERS};
+    use delmesh::recovery::suppress::{merge_interior, FIRST_REMOVAL};
     use delmesh::recovery::tetmesh::TetMesh;
     let mut next = uniform(0x9e37_79b9);
     // The corners of a cube first; the other points are strictly inside it.
@@ -774,7 +774,7 @@ fn interior_points_are_merged_or_refilled_away() {
     );
     let mut protected = Protected::default();
     protected.insert_facet(kept);
-    merge_interior(&mut mesh, &protected, 8, REFILL_LAYERS).unwrap();
+    merge_interior(&mut mesh, &protected, 8, FIRST_REMOVAL).unwrap();
     mesh.validate().unwrap();
     assert!(
         mesh.find_face(kept).is_some(),

@@ -24,8 +24,9 @@
 //!    an earlier one made goes on from a copy of the state they left ([`Prefix`]).
 //! 4. Points added on the surface are moved off it, then merged away, or removed where their
 //!    star, or their star and a few layers around it, can be filled again without them by
-//!    this same recovery with no point allowed (§5.3, [`suppress`]); where points are left
-//!    inside the kept regions, once more with more layers ([`fewer_points`]).
+//!    this same recovery with no point allowed (§5.3, [`suppress`]), or two neighbouring
+//!    points merged into one; where points are left inside the kept regions, once more with
+//!    more layers, which may then hold another point ([`fewer_points`]).
 //! 5. Regions are found by flood fill from the box across non-input facets; the box region
 //!    is dropped (§5.3, last remark).
 //! 6. Optional quality refinement with interior points only ([`refine`]: radius-edge and
@@ -569,13 +570,13 @@ fn recover_by(
     // The copies serve attempts after a failed recovery; past it, they are freed.
     starts.attempts.clear();
     let first = input.first_added();
-    suppress::merge_interior(&mut mesh, &part.protected, first, suppress::REFILL_LAYERS)?;
+    suppress::merge_interior(&mut mesh, &part.protected, first, suppress::FIRST_REMOVAL)?;
     suppress::relocate_interior(&mut mesh, &part, first);
     fewer_points(input, classified(input, mesh, part)?)
 }
 
 /// Where interior points are left in the kept regions of `recovered`, a second removal with
-/// stars grown by more layers ([`suppress::MORE_LAYERS`]), after the relocation (a moved
+/// stars grown by more layers ([`suppress::SECOND_REMOVAL`]), after the relocation (a moved
 /// point may now go with fewer), then the relocation and the regions again. It only removes
 /// points: each schedule's count can only fall. Interior points with and without it: anchor
 /// 12 -> 9, joint 4 -> 2, handle 8 -> 7, pipe 7 -> 6, sphere966 1 -> 0 (TetGen 24, 3, 0,
@@ -588,7 +589,7 @@ fn fewer_points(input: &Input, recovered: Recovered) -> Result<Recovered> {
     }
     let Recovered { mut mesh, part, .. } = recovered;
     let first = input.first_added();
-    suppress::merge_interior(&mut mesh, &part.protected, first, suppress::MORE_LAYERS)?;
+    suppress::merge_interior(&mut mesh, &part.protected, first, suppress::SECOND_REMOVAL)?;
     suppress::relocate_interior(&mut mesh, &part, first);
     classified(input, mesh, part)
 }
@@ -916,10 +917,14 @@ impl Points<'_> {
 }
 
 /// The tetrahedra filling the closed surface `triangles` (indices into `points`: the
-/// boundary of a region of tetrahedra) with no added point, as this module's recovery finds
-/// them; `None` when it needs a point.
-fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[u32; 4]>> {
-    let mut mesh = enclosed_delaunay(points, triangles, &[]).ok()?;
+/// boundary of a region of tetrahedra) with no added point, the vertices `inner` (inside it)
+/// among theirs, as this module's recovery finds them; `None` when it needs a point.
+fn fill_without_points(
+    points: &[Point],
+    triangles: &[[u32; 3]],
+    inner: &[u32],
+) -> Option<Vec<[u32; 4]>> {
+    let mut mesh = enclosed_delaunay(points, triangles, inner).ok()?;
     let part = Partition::new(triangles);
     if let Some(mut progress) = Progress::start(&mut mesh, &part) {
         let missing = progress.by_flips(&mut mesh, &part, FILL, false).ok()?;
@@ -947,7 +952,8 @@ fn fill_without_points(points: &[Point], triangles: &[[u32; 3]]) -> Option<Vec<[
         .filter(|&t| !outside[t as usize])
         .map(|t| mesh.tets.vertices(t))
         .collect();
-    inside.iter().flatten().all(|&v| v < n).then_some(inside)
+    let used = |v: &u32| inside.iter().any(|q| q.contains(v));
+    (inside.iter().flatten().all(|&v| v < n) && inner.iter().all(used)).then_some(inside)
 }
 
 /// Counts one added point against `budget`.
