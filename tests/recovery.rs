@@ -774,7 +774,13 @@ fn interior_points_are_merged_or_refilled_away() {
     );
     let mut protected = Protected::default();
     protected.insert_facet(kept);
-    merge_interior(&mut mesh, &protected, 8, FIRST_REMOVAL).unwrap();
+    merge_interior(
+        &mut mesh,
+        &protected,
+        &(8..68).collect::<Vec<u32>>(),
+        FIRST_REMOVAL,
+    )
+    .unwrap();
     mesh.validate().unwrap();
     assert!(
         mesh.find_face(kept).is_some(),

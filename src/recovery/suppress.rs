@@ -26,8 +26,9 @@
 //! neighbour (the paper's merging), or removed by filling their star, or their star and a few
 //! layers around it, again without them: the recovery of the region's boundary, with no point
 //! allowed, does that when it can. Last, a point left is dissolved by flips where they can
-//! take its edges away one by one ([`dissolve`]). Where points are left in the kept regions,
-//! all this runs once more with more layers ([`MORE_LAYERS`], [`super::fewer_points`]).
+//! take its edges away one by one ([`dissolve`]). Only the points inside the kept regions are
+//! removed so; where some are left, all this runs once more with more layers
+//! ([`SECOND_REMOVAL`]).
 
 use rustc_hash::FxHashMap as HashMap;
 
@@ -544,7 +545,7 @@ fn bounding_sides(
 /// Removes the points moved off the surface where possible (George and Borouchaki §5.3,
 /// "some added points may simply vanish by merging"). Point `s` collapses onto the nearest
 /// vertex `q` of its star for which every tetrahedron of the star without `q` stays positive
-/// with `s` replaced by `q`; points `first..` are tried in order until none collapses. Then
+/// with `s` replaced by `q`; the `points` (sorted) are tried in order until none collapses. Then
 /// each point left is removed when its star, or its star and up to `removal.layers` layers
 /// around it, can be filled again without it ([`refill`]), and two neighbouring points left
 /// are merged into one where one point sees their joined stars' boundary ([`merge_pair`]);
@@ -553,13 +554,13 @@ fn bounding_sides(
 pub fn merge_interior(
     mesh: &mut TetMesh,
     protected: &Protected,
-    first: u32,
+    points: &[u32],
     removal: Removal,
 ) -> Result<()> {
     for _ in 0..REFILL_PASSES {
         loop {
             let mut merged = false;
-            for s in left(mesh, first) {
+            for s in left(mesh, points) {
                 merged |= collapse(mesh, protected, s)?;
             }
             if !merged {
@@ -567,7 +568,7 @@ pub fn merge_interior(
             }
         }
         let mut removed = false;
-        for s in left(mesh, first) {
+        for s in left(mesh, points) {
             for layers in 0..=removal.layers {
                 if refill(mesh, protected, s, layers, removal.kept_inside)? {
                     removed = true;
@@ -575,8 +576,8 @@ pub fn merge_interior(
                 }
             }
         }
-        for s in left(mesh, first) {
-            if mesh.in_mesh(s) && merge_pair(mesh, protected, s, first)? {
+        for s in left(mesh, points) {
+            if mesh.in_mesh(s) && merge_pair(mesh, protected, s, points)? {
                 removed = true;
             }
         }
@@ -584,24 +585,24 @@ pub fn merge_interior(
             break;
         }
     }
-    for s in left(mesh, first) {
+    for s in left(mesh, points) {
         dissolve(mesh, protected, s)?;
     }
     Ok(())
 }
 
-/// Removes interior point `p` together with a neighbouring added point `q` inside, one point
+/// Removes interior point `p` together with a neighbour `q` among `points` (sorted), one point
 /// in their place: the edge `pq` is collapsed and the point left put at its midpoint, or
 /// deepest in the kernel of its new star ([`deepest_in_kernel`]); `false`, changing nothing,
 /// where no place keeps every tetrahedron positive. Interior points left on Chazelle's
 /// polyhedra with three and four notches a side: 16 -> 14, 22 -> 21.
-fn merge_pair(mesh: &mut TetMesh, protected: &Protected, p: u32, first: u32) -> Result<bool> {
+fn merge_pair(mesh: &mut TetMesh, protected: &Protected, p: u32, points: &[u32]) -> Result<bool> {
     let ball = mesh.ball(p);
     if on_surface(mesh, protected, &ball, p) {
         return Ok(false);
     }
     let mut link = link(mesh, &ball, p);
-    link.retain(|&q| q >= first);
+    link.retain(|q| points.binary_search(q).is_ok());
     nearest_first(mesh, p, &mut link);
     for q in link {
         let mut old = mesh.ball(q);
@@ -722,10 +723,10 @@ pub const FIRST_REMOVAL: Removal = Removal {
     kept_inside: 0,
 };
 
-/// The removal on the mesh a recovery keeps when points are left in its regions
-/// ([`super::fewer_points`]): more layers, and one point kept inside them (handle: 7 points
-/// left -> 6). With no bound on the points kept, no input of the C test kept fewer, and
-/// Chazelle's polyhedra with two to four notches a side took 1.5 to 2.1 times as long.
+/// The removal on the mesh a recovery keeps when points are left in its regions: more
+/// layers, and one point kept inside them (handle: 7 points left -> 6). With no bound on the
+/// points kept, no input of the C test kept fewer, and Chazelle's polyhedra with two to four
+/// notches a side took 1.5 to 2.1 times as long.
 pub const SECOND_REMOVAL: Removal = Removal {
     layers: 6,
     kept_inside: 1,
@@ -735,9 +736,11 @@ pub const SECOND_REMOVAL: Removal = Removal {
 /// neighbour removable).
 const REFILL_PASSES: usize = 2;
 
-/// The points `first..` still in the mesh.
-fn left(mesh: &TetMesh, first: u32) -> Vec<u32> {
-    (first..mesh.points.len() as u32)
+/// The `points` still in the mesh.
+fn left(mesh: &TetMesh, points: &[u32]) -> Vec<u32> {
+    points
+        .iter()
+        .copied()
         .filter(|&s| mesh.in_mesh(s))
         .collect()
 }
@@ -1130,7 +1133,7 @@ mod tests {
                 .map(|q| tet_volume(q.map(|v| mesh.point(v))).abs())
                 .sum()
         };
-        assert!(merge_pair(&mut mesh, &protected, 8, 8).unwrap());
+        assert!(merge_pair(&mut mesh, &protected, 8, &[8, 9]).unwrap());
         assert!(!mesh.in_mesh(8) && mesh.in_mesh(9));
         mesh.validate().unwrap();
         assert!(mesh
@@ -1139,7 +1142,7 @@ mod tests {
             .all(|&t| mesh.positive(mesh.tets.vertices(t))));
         assert!((volume(&mesh) - 1.0).abs() < 1e-12);
         // Alone, the point left has nothing to merge with.
-        assert!(!merge_pair(&mut mesh, &protected, 9, 8).unwrap());
+        assert!(!merge_pair(&mut mesh, &protected, 9, &[8, 9]).unwrap());
     }
 
     #[test]
