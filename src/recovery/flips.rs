@@ -221,6 +221,21 @@ impl<K: std::hash::Hash + Eq, const MOST: usize> Failures<K, MOST> {
         }
         self.0.insert(k);
     }
+
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
+    /// Forgets every failure; an empty set is left as it is (clearing costs its capacity).
+    pub fn clear(&mut self) {
+        if !self.0.is_empty() {
+            self.0.clear();
+        }
+    }
 }
 
 /// The edges whose ring, under a rule with a name ([`Rule::memo_key`]), has no
@@ -240,11 +255,11 @@ impl FailedRings {
 
     /// How many failures are remembered.
     pub fn len(&self) -> usize {
-        self.0 .0.len()
+        self.0.len()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.0 .0.is_empty()
+        self.0.is_empty()
     }
 
     /// The rule's name, the edge and its ring, padded with the infinite vertex (never in
@@ -261,10 +276,8 @@ impl FailedRings {
 
     /// Forgets every failure (a point moved).
     pub fn clear(&mut self) {
-        // Clearing costs the table's capacity, and points are moved in long series.
-        if !self.is_empty() {
-            self.0 .0.clear();
-        }
+        // Points are moved in long series.
+        self.0.clear();
     }
 }
 

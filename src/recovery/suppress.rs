@@ -605,15 +605,12 @@ fn merge_pair(mesh: &mut TetMesh, protected: &Protected, p: u32, points: &[u32])
     link.retain(|q| points.binary_search(q).is_ok());
     nearest_first(mesh, p, &mut link);
     for q in link {
-        let mut old = mesh.ball(q);
-        if on_surface(mesh, protected, &old, q) {
+        let others = mesh.ball(q);
+        if on_surface(mesh, protected, &others, q) {
             continue;
         }
-        old.extend(&ball);
-        old.sort_unstable();
-        old.dedup();
-        let new: Vec<[u32; 4]> = old
-            .iter()
+        // The star of `q` once `p` is merged into it ([`merge_into`]).
+        let star: Vec<[u32; 4]> = (others.iter().chain(&ball))
             .map(|&t| mesh.tets.vertices(t))
             .filter(|v| !(v.contains(&p) && v.contains(&q)))
             .map(|v| renamed(v, p, q))
@@ -621,11 +618,10 @@ fn merge_pair(mesh: &mut TetMesh, protected: &Protected, p: u32, points: &[u32])
         let at = *mesh.point(q);
         let middle = [0, 1, 2].map(|k| 0.5 * (at[k] + mesh.point(p)[k]));
         mesh.move_point(q, middle);
-        let deepest = deepest_in_kernel(mesh, &new, q);
+        let deepest = deepest_in_kernel(mesh, &star, q);
         for c in [middle, deepest] {
             mesh.move_point(q, c);
-            if new.iter().all(|&v| mesh.positive(v)) && mesh.try_replace(&old, &new)?.is_some() {
-                mesh.forget(p);
+            if star.iter().all(|&v| mesh.positive(v)) && merge_into(mesh, &ball, p, q)? {
                 return Ok(true);
             }
         }
@@ -725,8 +721,9 @@ pub const FIRST_REMOVAL: Removal = Removal {
 
 /// The removal on the mesh a recovery keeps when points are left in its regions: more
 /// layers, and one point kept inside them (handle: 7 points left -> 6). With no bound on the
-/// points kept, no input of the C test kept fewer, and Chazelle's polyhedra with two to four
-/// notches a side took 1.5 to 2.1 times as long.
+/// points kept, none of the inputs of the C test that need points (Chazelle's polyhedra with
+/// two to four notches a side, anchor, joint, handle, pipe, sphere966) kept fewer, and those
+/// polyhedra took 1.5 to 2.1 times as long.
 pub const SECOND_REMOVAL: Removal = Removal {
     layers: 6,
     kept_inside: 1,
@@ -978,13 +975,13 @@ pub type FailedFills = Failures<Vec<u64>, 4096>;
 /// then (after [`INFINITE`](crate::triangulation::tets::INFINITE)) the inner ones, each
 /// followed by its coordinates' bits.
 fn fill_key(mesh: &TetMesh, boundary: &[[u32; 3]], inner: &[u32]) -> Vec<u64> {
-    let mut k = Vec::with_capacity(boundary.len() * 12 + inner.len() * 4 + 1);
-    let vertices = boundary.iter().flatten();
-    let inner_mark = std::iter::once(&crate::triangulation::tets::INFINITE);
-    for &v in vertices
-        .chain(inner_mark.filter(|_| !inner.is_empty()))
-        .chain(inner)
-    {
+    let mut vertices: Vec<u32> = boundary.iter().flatten().copied().collect();
+    if !inner.is_empty() {
+        vertices.push(crate::triangulation::tets::INFINITE);
+        vertices.extend(inner);
+    }
+    let mut k = Vec::with_capacity(vertices.len() * 4);
+    for v in vertices {
         k.push(u64::from(v));
         if v != crate::triangulation::tets::INFINITE {
             k.extend(mesh.point(v).map(f64::to_bits));
