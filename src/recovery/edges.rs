@@ -18,7 +18,8 @@
 //! `checkflipeligibility` with a segment).
 
 use super::faces::crosses;
-use super::flips::{flip23, remove_edge, remove_edge_deep, Any, Protected, Rule};
+use super::flips::{blocking_sides, flip23, remove_edge, remove_edge_deep, Any, Protected, Rule};
+use super::partition::pair;
 use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::predicates::Sign;
@@ -233,10 +234,10 @@ fn unblock(
     match c {
         Crossing::Facet(t, i) => {
             let (d, [x, y, z]) = mesh.with_apex(t, i);
-            let e = mesh.across(t, i);
             let mut edges = [[x, y], [y, z], [z, x]];
-            if e != INFINITE {
-                edges.sort_by_key(|&[u, w]| mesh.positive([d, u, w, e]));
+            if d != INFINITE && mesh.across(t, i) != INFINITE {
+                let blocking = blocking_sides(mesh, t, i);
+                edges.sort_by_key(|&[u, w]| !blocking.contains(&pair(u, w)));
             }
             for e in edges {
                 if remove_edge_deep(mesh, protected, e, rule, depth, &mut budget.to_owned())? {

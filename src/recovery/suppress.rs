@@ -37,7 +37,7 @@ use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
 use super::until_stable;
 use crate::error::{Error, ErrorKind, Result};
-use crate::geometry::{add, cross, dist, dot, norm, sub};
+use crate::geometry::{add, cross, dist, dot, midpoint, norm, sub};
 use crate::io::surface::triangulate_polygon_avoiding;
 use crate::predicates::Point;
 use crate::triangulation::tets::FACE;
@@ -616,7 +616,7 @@ fn merge_pair(mesh: &mut TetMesh, protected: &Protected, p: u32, points: &[u32])
             .map(|v| renamed(v, p, q))
             .collect();
         let at = *mesh.point(q);
-        let middle = [0, 1, 2].map(|k| 0.5 * (at[k] + mesh.point(p)[k]));
+        let middle = midpoint(&at, mesh.point(p));
         mesh.move_point(q, middle);
         let deepest = deepest_in_kernel(mesh, &star, q);
         for c in [middle, deepest] {
