@@ -106,8 +106,7 @@ impl Partition {
     /// The input triangles whose closure holds vertex `v`.
     pub fn faces_of(&self, v: u32) -> Vec<usize> {
         match self.host.get(&v) {
-            Some(Host::Face(f)) => vec![*f],
-            Some(Host::Edge(e)) => self.faces_of_edge(*e),
+            Some(&host) => self.faces_of_host(host),
             None => self.faces_of_vertex(v).map(|f| f as usize).collect(),
         }
     }
@@ -152,6 +151,14 @@ impl Partition {
         Host::Face(inside.or(common.first().copied()).unwrap_or(0))
     }
 
+    /// The input triangles whose closure holds a point of `host`.
+    pub fn faces_of_host(&self, host: Host) -> Vec<usize> {
+        match host {
+            Host::Edge(e) => self.faces_of_edge(e),
+            Host::Face(f) => vec![f],
+        }
+    }
+
     /// Whether vertex `v` lies on input edge `e`: an end of it, or a point added on it.
     pub fn on_edge(&self, v: u32, e: [u32; 2]) -> bool {
         e.contains(&v) || self.host.get(&v) == Some(&Host::Edge(e))
@@ -190,10 +197,7 @@ impl Partition {
     /// Records point `s` added on sub-edge `(p, q)`: every subface on that edge is halved.
     pub fn split_edge(&mut self, p: u32, q: u32, s: u32) {
         let host = self.host_of_subedge(p, q);
-        let faces: Vec<usize> = match host {
-            Host::Edge(e) => self.faces_of_edge(e),
-            Host::Face(f) => vec![f],
-        };
+        let faces = self.faces_of_host(host);
         let e = pair(p, q);
         for &f in &faces {
             let hit: Vec<[u32; 3]> = self.with_side(f, e).collect();
