@@ -8,7 +8,9 @@
 //!
 //! A point splits the subfaces it lies on; with [`Partition::delaunay_around`], Lawson's
 //! flips then make the subfaces around it Delaunay in the triangle's plane (the chains of its
-//! edges stay), so that they do not grow thin where many points go on one triangle.
+//! edges stay), so that they do not grow thin where many points go on one triangle. A
+//! sub-edge inside a triangle may also be flipped to the other diagonal of its two subfaces
+//! ([`Partition::flip`]): recovery does so where that diagonal is already a mesh edge.
 //!
 //! Invariants: the subfaces of a triangle form a disk whose boundary is the chains of its
 //! three edges; `protected` holds exactly the current subfaces and their edges.
@@ -240,20 +242,8 @@ impl Partition {
 
     /// Makes the subfaces of input triangle `f` around the sides of `start` Delaunay in the
     /// triangle's plane (Lawson's flips of sub-edges inside `f`; the chains of its edges stay).
-    /// The decisions are exact on the points projected along the axis nearest the normal.
     fn delaunay_flips(&mut self, f: usize, start: &[[u32; 3]], points: &[Point]) {
-        let [a, b, c] = self.input[f].map(|v| points[v as usize]);
-        let n = cross(&sub(&b, &a), &sub(&c, &a));
-        let axis = (0..3).fold(0, |m, k| if n[k].abs() > n[m].abs() { k } else { m });
-        let (i, j) = ((axis + 1) % 3, (axis + 2) % 3);
-        let flat = |v: u32| {
-            let p = &points[v as usize];
-            if n[axis] > 0.0 {
-                [p[i], p[j]]
-            } else {
-                [p[j], p[i]]
-            }
-        };
+        let plane = Plane::of(self.input[f].map(|v| &points[v as usize]));
         let mut stack: Vec<[u32; 2]> = start.iter().flat_map(|&t| sides(t)).collect();
         // Lawson's flips end; the bound is for subfaces that rounding left overlapping.
         let mut budget = 64 * (self.subfaces(f).len() + 8);
@@ -262,39 +252,63 @@ impl Partition {
                 return;
             }
             budget -= 1;
-            let mut on_e = self.with_side(f, e);
-            let (Some(t), Some(u), None) = (on_e.next(), on_e.next(), on_e.next()) else {
+            let Some(quad) = self.flippable(f, e, &plane, points) else {
                 continue;
             };
-            drop(on_e);
-            let r = (0..3).find(|&k| !e.contains(&t[k])).unwrap_or(0);
-            let [x, y, z] = [t[r], t[(r + 1) % 3], t[(r + 2) % 3]];
-            let w = u.into_iter().find(|v| !e.contains(v)).unwrap_or(u[0]);
-            let [px, py, pz, pw] = [x, y, z, w].map(flat);
-            // x y z and y w z positive, and the quadrilateral x y w z strictly convex.
-            let convex = [
-                [&px, &py, &pz],
-                [&py, &pw, &pz],
-                [&px, &py, &pw],
-                [&px, &pw, &pz],
-            ]
-            .into_iter()
-            .all(|[p, q, r]| orient2d(p, q, r) == Sign::Positive);
-            if !convex || incircle(&px, &py, &pz, &pw) != Sign::Positive {
+            let [x, y, w, z] = quad.corners;
+            let [px, py, pz, pw] = [x, y, z, w].map(|v| plane.project(&points[v as usize]));
+            if incircle(&px, &py, &pz, &pw) != Sign::Positive {
                 continue;
             }
-            // A diagonal along an edge of `f` (its ends on one chain, the points between them
-            // off it by rounding) would not be inside `f`.
-            if sides(self.input[f])
-                .iter()
-                .any(|&side| self.on_edge(x, side) && self.on_edge(w, side))
-            {
-                continue;
-            }
-            let new = [[x, y, w], [x, w, z]];
-            self.retriangulate(f, &[t, u], &new);
+            self.flip(f, &quad);
             stack.extend([[x, y], [y, w], [w, z], [z, x]].map(|[p, q]| pair(p, q)));
         }
+    }
+
+    /// The two subfaces of input triangle `f` on sub-edge `e`, where flipping `e` to the
+    /// other diagonal of their quadrilateral keeps them inside `f` ([`Partition::flip`]): the
+    /// triangle's subfaces are the partition's own choice.
+    pub fn flippable_in(&self, f: usize, e: [u32; 2], points: &[Point]) -> Option<Quad> {
+        let plane = Plane::of(self.input[f].map(|v| &points[v as usize]));
+        self.flippable(f, e, &plane, points)
+    }
+
+    /// The two subfaces of `f` on sub-edge `e` when their quadrilateral is strictly convex
+    /// in the triangle's plane and its other diagonal is not along an edge of `f`.
+    fn flippable(&self, f: usize, e: [u32; 2], plane: &Plane, points: &[Point]) -> Option<Quad> {
+        let mut on_e = self.with_side(f, e);
+        let (Some(t), Some(u), None) = (on_e.next(), on_e.next(), on_e.next()) else {
+            return None;
+        };
+        let r = (0..3).find(|&k| !e.contains(&t[k])).unwrap_or(0);
+        let [x, y, z] = [t[r], t[(r + 1) % 3], t[(r + 2) % 3]];
+        let w = u.into_iter().find(|v| !e.contains(v)).unwrap_or(u[0]);
+        let [px, py, pz, pw] = [x, y, z, w].map(|v| plane.project(&points[v as usize]));
+        // x y z and y w z positive, and the quadrilateral x y w z strictly convex.
+        let convex = [
+            [&px, &py, &pz],
+            [&py, &pw, &pz],
+            [&px, &py, &pw],
+            [&px, &pw, &pz],
+        ]
+        .into_iter()
+        .all(|[p, q, r]| orient2d(p, q, r) == Sign::Positive);
+        // A diagonal along an edge of `f` (its ends on one chain, the points between them
+        // off it by rounding) would not be inside `f`.
+        let along = sides(self.input[f])
+            .iter()
+            .any(|&side| self.on_edge(x, side) && self.on_edge(w, side));
+        (convex && !along).then_some(Quad {
+            old: [t, u],
+            corners: [x, y, w, z],
+        })
+    }
+
+    /// Replaces the two subfaces of `quad` in input triangle `f` by those on its other
+    /// diagonal.
+    pub fn flip(&mut self, f: usize, quad: &Quad) {
+        let [x, y, w, z] = quad.corners;
+        self.retriangulate(f, &quad.old, &[[x, y, w], [x, w, z]]);
     }
 
     /// The subfaces of `f` around vertex `v`.
@@ -317,5 +331,96 @@ impl Partition {
         for &t in old {
             self.unprotect(t);
         }
+    }
+}
+
+/// Two subfaces sharing a sub-edge: `old`, and the corners `x y w z` of their
+/// quadrilateral in order, the shared sub-edge `(y, z)`.
+pub struct Quad {
+    old: [[u32; 3]; 2],
+    corners: [u32; 4],
+}
+
+impl Quad {
+    /// The diagonal a flip makes, `(x, w)`.
+    pub fn other_diagonal(&self) -> [u32; 2] {
+        [self.corners[0], self.corners[2]]
+    }
+}
+
+/// The plane of an input triangle, where decisions are exact on the points projected along
+/// the axis nearest its normal, turning the way the triangle does.
+struct Plane {
+    axis: usize,
+    upward: bool,
+}
+
+impl Plane {
+    fn of([a, b, c]: [&Point; 3]) -> Self {
+        let n = cross(&sub(b, a), &sub(c, a));
+        let axis = (0..3).fold(0, |m, k| if n[k].abs() > n[m].abs() { k } else { m });
+        Plane {
+            axis,
+            upward: n[axis] > 0.0,
+        }
+    }
+
+    fn project(&self, p: &Point) -> [f64; 2] {
+        let (i, j) = ((self.axis + 1) % 3, (self.axis + 2) % 3);
+        if self.upward {
+            [p[i], p[j]]
+        } else {
+            [p[j], p[i]]
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::recovery::tetmesh::Key;
+
+    /// Triangle (0, 1, 2) with a point on two of its edges: 3 on (0, 1), 4 on (1, 2).
+    fn split_triangle() -> (Partition, Vec<Point>) {
+        let points = vec![
+            [0.0, 0.0, 0.0],
+            [4.0, 0.0, 0.0],
+            [0.0, 4.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 2.0, 0.0],
+        ];
+        let mut part = Partition::new(&[[0, 1, 2]]);
+        part.split_edge(0, 1, 3);
+        part.split_edge(1, 2, 4);
+        (part, points)
+    }
+
+    #[test]
+    fn a_sub_edge_inside_a_triangle_flips_where_its_quadrilateral_is_convex() {
+        let (mut part, points) = split_triangle();
+        let quad = part.flippable_in(0, [2, 3], &points).expect("convex");
+        assert_eq!(quad.other_diagonal(), [0, 4]);
+        part.flip(0, &quad);
+        let mut tiles: Vec<Key> = part.subfaces(0).iter().map(|&t| key(t)).collect();
+        tiles.sort_unstable();
+        let mut expected = vec![key([0, 3, 4]), key([0, 4, 2]), key([3, 1, 4])];
+        expected.sort_unstable();
+        assert_eq!(tiles, expected);
+        assert!(part.protected.edge(0, 4) && !part.protected.edge(2, 3));
+        assert!(part.protected.facet([0, 3, 4]) && !part.protected.facet([0, 3, 2]));
+        // Every subface keeps the triangle's orientation.
+        for t in part.subfaces(0) {
+            let [a, b, c] = t.map(|v| points[v as usize]);
+            assert!(cross(&sub(&b, &a), &sub(&c, &a))[2] > 0.0);
+        }
+    }
+
+    #[test]
+    fn no_flip_where_the_quadrilateral_is_not_strictly_convex_or_the_edge_is_input() {
+        let (part, points) = split_triangle();
+        // 1, 4, 2 lie on the input edge (1, 2): the quadrilateral 1 4 2 3 is not convex.
+        assert!(part.flippable_in(0, [3, 4], &points).is_none());
+        // (0, 3) lies on the input edge (0, 1): one subface only.
+        assert!(part.flippable_in(0, [0, 3], &points).is_none());
     }
 }
