@@ -19,9 +19,10 @@
 //! point could not leave the surface through it later ([`super::suppress`] moves a point
 //! into a piece of its star, and a flat tetrahedron there bounds the piece by the plane of
 //! the surface itself). Only inputs whose planar faces are split among many points made
-//! such cones: with the rule, outputs on the corpus are bit for bit the same, and Chazelle's
-//! polyhedra keep 5, 13, 15, 18, 34 and 38 interior points with two to seven notches a side
-//! (5, 9, 16, 27, 28 and none before: with seven the points could not all leave).
+//! such cones: when the rule came, outputs on the corpus stayed bit for bit the same, and
+//! Chazelle's polyhedra kept 5, 13, 15, 18, 34 and 38 interior points with two to seven
+//! notches a side (5, 9, 16, 27, 28 and none before: with seven the points could not all
+//! leave).
 
 use super::edges::Crossing;
 use super::partition::Partition;
