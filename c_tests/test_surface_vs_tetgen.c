@@ -188,9 +188,9 @@ static void run_delmesh(const Case *c, double ratio, Output *o) {
 }
 
 /* Cases on which delmesh is known to stop with DELMESH_ERROR_LIMIT (every recovery attempt stops:
- * on a crossing too near a vertex where the sub-edge's midpoint cannot go in either, on its point
- * budget, or on a point added on the surface that can neither move off nor merge): reported as
- * such, so that the list is the record of what is still short. */
+ * on a crossing too near a sub-edge's end, on its point budget, or on a point added on the
+ * surface that can neither move off nor merge): reported as such, so that the list is the
+ * record of what is still short. */
 static const char *const known_limits[] = {"Chazelle k=8"};
 static int listed(const char *name, const char *const *list, size_t n) {
   for (size_t i = 0; i < n; i++)

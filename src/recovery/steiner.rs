@@ -8,12 +8,11 @@
 //! ([`super::partition`]). The cone is accepted only if every new tetrahedron is positive.
 //! Where no set around the crossing is star-shaped from the rounded point, the tetrahedra
 //! whose closure holds it are split instead ([`holding`]); where no point near the crossing
-//! goes in, the sub-edge's midpoint is added. A crossing closer to an end of the sub-edge,
-//! or to a vertex of the crossed tetrahedra, than [`NEAR_COPY`] of its length would make a
-//! near copy: the midpoint is tried at once, and where it cannot go in either the attempt
-//! stops. Where a crossed edge passes the sub-edge's start within rounding (flips made it
-//! again past a point added on it), no point is added: the edge's shell joins the start's
-//! star, coned again from the start ([`absorb`]).
+//! goes in, the sub-edge's midpoint is added. A crossing closer to an end of the sub-edge
+//! than [`NEAR_COPY`] of its length stops the attempt, except where a crossed edge passes
+//! the sub-edge's start within rounding (flips made it again past a point added on it): no
+//! point is added, the edge's shell joins the start's star, coned again from the start
+//! ([`absorb`]).
 //!
 //! A cone is also refused where one of its tetrahedra has all four vertices on one input
 //! triangle ([`flat`]): such a tetrahedron has no volume but what rounding gives it, and the
@@ -175,16 +174,11 @@ fn flat(part: &Partition, faces: &[usize], base: [u32; 3]) -> bool {
     faces.iter().any(|f| holders.iter().all(|h| h.contains(f)))
 }
 
-/// How close to an end of a sub-edge, or to a vertex of the tetrahedra it crosses there,
-/// relative to its length, a crossing makes a near copy of that vertex ([`split_subedge`]):
-/// the sub-edges around such pairs cross one another a little later. The sub-edge's midpoint
-/// goes in instead, or the attempt stops. Stopping at once (before the midpoint was tried)
-/// left every output of the C test as it was and made the failing attempts shorter: anchor
-/// 1.61 -> 1.01 s, Chazelle's polyhedron with four notches a side 11.1 -> 7.7 s, and with
-/// five 17.3 -> 10.1 s to fail. With the midpoint and the crossed tetrahedra's vertices,
-/// Chazelle's polyhedron with six notches a side keeps 27 points, not 32, in the same time;
-/// every other output stayed the same, and attempts that fail run longer (four, five and
-/// seven notches 6.7 -> 7.3, 13.1 -> 13.6 and 28.3 -> 32.4 s, medians of 3).
+/// How close to an end of a sub-edge, relative to its length, a crossing stops the attempt
+/// ([`split_subedge`]): a point there would be a near copy of the end, and the sub-edges around
+/// such pairs cross one another a little later. Stopping at once left every output of the
+/// C test as it was and made the failing attempts shorter: anchor 1.61 -> 1.01 s, Chazelle's
+/// polyhedron with four notches a side 11.1 -> 7.7 s, and with five 17.3 -> 10.1 s to fail.
 const NEAR_COPY: f64 = 1e-6;
 
 /// Whether the crossing `point` of sub-edge `(p, q)` is so close to `p` (a billionth of the
@@ -278,9 +272,10 @@ fn cone_boundary(mesh: &mut TetMesh, set: &[u32], s: u32) -> Option<Vec<[u32; 4]
     whole.then_some(new)
 }
 
-/// Adds a point on sub-edge `(p, q)` where it first crosses the mesh from `p`, or at its
-/// midpoint; returns it. `None` when the crossing is an edge passing `p` within rounding,
-/// which [`absorb`] took away without a point; a `Limit` error when no point goes in.
+/// Adds a point on sub-edge `(p, q)` where it first crosses the mesh from `p`; returns it.
+/// `None` when the crossing is an edge passing `p` within rounding, which [`absorb`] took
+/// away without a point; a `Limit` error when the crossing is nearer an end than
+/// [`NEAR_COPY`].
 pub fn split_subedge(
     mesh: &mut TetMesh,
     part: &mut Partition,
@@ -318,23 +313,17 @@ pub fn split_subedge(
         }
         Crossing::Vertex(v) => return Err(super::edges::vertex_on_edge(mesh, v, [p, q])),
     };
-    let near = NEAR_COPY * dist(&pp, &pq);
-    let near_copy = dist(&point, &pp).min(dist(&point, &pq)) <= near
-        || set
-            .iter()
-            .flat_map(|&t| mesh.tets.vertices(t))
-            .any(|v| v != INFINITE && dist(mesh.point(v), &point) <= near);
+    if dist(&point, &pp).min(dist(&point, &pq)) <= NEAR_COPY * dist(&pp, &pq) {
+        return Err(failure(format!(
+            "sub-edge ({p}, {q}) is crossed too near an end, at {point:?}"
+        )));
+    }
     let faces = part.faces_of_host(part.host_of_subedge(p, q));
     let at = |at| NewPoint { at, faces: &faces };
-    let at_crossing = if near_copy {
-        None
-    } else {
-        cone(mesh, part, &set, at(point))?
-    };
-    let added = match at_crossing {
+    let added = match cone(mesh, part, &set, at(point))? {
         Some(s) => Some(s),
-        // No point near the crossing went in, or it would be a near copy: the sub-edge's
-        // midpoint, wherever the tetrahedra hold it.
+        // No point near the crossing went in: the sub-edge's midpoint, wherever the
+        // tetrahedra hold it.
         None => {
             let m = midpoint(&pp, &pq);
             match holding(mesh, part, set[0], &m) {
@@ -348,10 +337,6 @@ pub fn split_subedge(
             part.split_edge(p, q, s);
             Ok(Some(s))
         }
-        None if near_copy => Err(failure(format!(
-            "sub-edge ({p}, {q}) is crossed too near a vertex, at {point:?}, and its \
-             midpoint cannot go in"
-        ))),
         None => Err(failure(format!(
             "no valid point found on the sub-edge ({p}, {q}) near {point:?}"
         ))),
