@@ -698,7 +698,7 @@ fn complete(
 /// crossings crowds points a rounding apart; with the flip, anchor meshes in 2.0 s instead
 /// of 4.0 s with the same 10 interior points (the first schedule's later attempts succeed
 /// sooner), and Chazelle's polyhedra keep 5, 11, 15, 21, 32 and 38 points with two to seven
-/// notches a side (5, 13, 15, 18, 34 and 38 without; seven 32 s against 20 s).
+/// notches a side (5, 13, 15, 18, 34 and 38 without; seven 28 s against 20 s in CI runs).
 fn flipped_to_edge(mesh: &mut TetMesh, part: &mut Partition, e: [u32; 2]) -> bool {
     let partition::Host::Face(f) = part.host_of_subedge(e[0], e[1]) else {
         return false;

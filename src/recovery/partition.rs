@@ -21,6 +21,7 @@ use super::by_vertex::{vertex_count, ByVertex};
 use super::flips::Protected;
 use super::tetmesh::key;
 use crate::geometry::{cross, sub};
+use crate::io::surface::project;
 use crate::predicates::{incircle, orient2d, Point, Sign};
 
 /// Where a point added on the surface lies.
@@ -158,6 +159,16 @@ impl Partition {
         match host {
             Host::Edge(e) => self.faces_of_edge(e),
             Host::Face(f) => vec![f],
+        }
+    }
+
+    /// Whether the closure of input triangle `f` holds vertex `v`: a corner of it, or a point
+    /// added inside it or on one of its edges.
+    pub fn holds(&self, f: usize, v: u32) -> bool {
+        match self.host.get(&v) {
+            Some(&Host::Face(g)) => g == f,
+            Some(&Host::Edge(e)) => sides(self.input[f]).contains(&e),
+            None => self.input[f].contains(&v),
         }
     }
 
@@ -366,11 +377,11 @@ impl Plane {
     }
 
     fn project(&self, p: &Point) -> [f64; 2] {
-        let (i, j) = ((self.axis + 1) % 3, (self.axis + 2) % 3);
+        let [u, v] = project(p, self.axis);
         if self.upward {
-            [p[i], p[j]]
+            [u, v]
         } else {
-            [p[j], p[i]]
+            [v, u]
         }
     }
 }

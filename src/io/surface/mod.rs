@@ -58,7 +58,7 @@ mod stl;
 mod tetgen;
 mod text;
 
-pub(crate) use polygon::triangulate_polygon_avoiding;
+pub(crate) use polygon::{project, triangulate_polygon_avoiding};
 
 use std::path::Path;
 

@@ -182,7 +182,7 @@ fn projection_axis(normal: &[f64; 3]) -> Result<usize, String> {
 
 /// `p` without its coordinate `axis`, the other two in cyclic order, so that a polygon
 /// whose normal points along `+axis` turns counter-clockwise.
-pub(super) fn project(p: &Point, axis: usize) -> [f64; 2] {
+pub(crate) fn project(p: &Point, axis: usize) -> [f64; 2] {
     [p[(axis + 1) % 3], p[(axis + 2) % 3]]
 }
 
