@@ -411,13 +411,13 @@ fn integers<const D: usize, const N: usize>(
 }
 
 /// `x = m 2^e` for integers `m, e`; `None` for zero.
-fn dyadic(x: f64) -> Option<(i64, i32)> {
+pub(super) fn dyadic(x: f64) -> Option<(i64, i32)> {
     let (mantissa, exponent, sign) = Float::integer_decode(x);
     let mantissa = i64::try_from(mantissa).expect("53-bit mantissa");
     (mantissa != 0).then(|| (i64::from(sign) * mantissa, i32::from(exponent)))
 }
 
-fn sign(x: &BigInt) -> Sign {
+pub(super) fn sign(x: &BigInt) -> Sign {
     match x.sign() {
         BigSign::Minus => Sign::Negative,
         BigSign::NoSign => Sign::Zero,
@@ -443,7 +443,7 @@ fn det2(rows: &[[BigInt; 2]; 2]) -> BigInt {
 }
 
 /// Expanded along the last column.
-fn det3(rows: &[[BigInt; 3]; 3]) -> BigInt {
+pub(super) fn det3(rows: &[[BigInt; 3]; 3]) -> BigInt {
     let [a, b, c] = rows;
     &a[2] * minor(b, c) - &b[2] * minor(a, c) + &c[2] * minor(a, b)
 }

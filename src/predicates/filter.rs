@@ -304,6 +304,8 @@ pub(super) fn power_coplanar(
 pub struct BoxBounds {
     orient3d: f64,
     insphere: f64,
+    /// The box's largest extent.
+    extent: f64,
 }
 
 impl BoxBounds {
@@ -314,6 +316,7 @@ impl BoxBounds {
         BoxBounds {
             orient3d: bound(&ORIENT3D, m[0] * m[1] * m[2]),
             insphere: bound(&INSPHERE, m[0] * m[1] * m[2] * largest * largest),
+            extent: largest,
         }
     }
 
@@ -328,6 +331,36 @@ impl BoxBounds {
             let (smallest, largest) = extremes(&m);
             ORIENT3D.certify(det, m[0] * m[1] * m[2], smallest, largest)
         })
+    }
+
+    /// A bound on the change of an orientation determinant of points of the box when each
+    /// moves by up to `moved` in each coordinate: its rows move by `d = 2 moved` and are at
+    /// most the extent `l`, and a determinant changes by at most `3 sqrt 3 * 3 d (l + d)^2`
+    /// (it is trilinear in its rows, see `combination.rs`).
+    pub fn moved_margin(&self, moved: f64) -> f64 {
+        let d = 2.0 * moved;
+        let reach = self.extent + d;
+        if moved == 0.0 {
+            0.0
+        } else {
+            15.6 * d * reach * reach * (1.0 + 1e-10)
+        }
+    }
+
+    /// [`orient3d`] where the determinant is farther from zero than the box's bound plus
+    /// `margin`; `None` otherwise.
+    #[inline]
+    pub fn orient3d_beyond(
+        &self,
+        a: &Point,
+        b: &Point,
+        c: &Point,
+        d: &Point,
+        margin: f64,
+    ) -> Option<Sign> {
+        let [r, s, t] = [diff::<3, _>(b, a), diff::<3, _>(c, a), diff::<3, _>(d, a)];
+        let det = (r[2] * minor(&s, &t) - s[2] * minor(&r, &t)) + t[2] * minor(&r, &s);
+        certify(det, self.orient3d + margin)
     }
 
     /// [`insphere`]: the box's bound first, then, on the same determinant, the bound of the
@@ -399,7 +432,7 @@ impl BoxBounds2d {
 }
 
 #[inline]
-fn certify(det: f64, eps: f64) -> Option<Sign> {
+pub(super) fn certify(det: f64, eps: f64) -> Option<Sign> {
     if det > eps {
         Some(Sign::Positive)
     } else if det < -eps {

@@ -37,6 +37,7 @@
 //! `Delaunay_triangulation_3::side_of_oriented_sphere`, `coplanar_side_of_bounded_circle` and
 //! `Regular_triangulation_3::side_of_power_sphere` with `perturb = true` (derivation in `perturb.rs`).
 
+pub mod combination;
 mod exact;
 
 /// splitmix64: the fixed-seed generator of the predicate tests.
@@ -160,6 +161,22 @@ impl BoxFilter {
             Some(sign) => sign,
             None => exact::orient3d(a, b, c, d),
         }
+    }
+
+    /// [`orient3d`] of points of the box, where it is certain though any of them may move by
+    /// up to `moved` in each coordinate: the box's bound widened by what such moves can
+    /// change (see [`combination`]); `None` otherwise.
+    #[inline]
+    pub fn orient3d_moved(
+        &self,
+        a: &Point,
+        b: &Point,
+        c: &Point,
+        d: &Point,
+        moved: f64,
+    ) -> Option<Sign> {
+        self.0
+            .orient3d_beyond(a, b, c, d, self.0.moved_margin(moved))
     }
 
     /// [`insphere`] of points of the box.

@@ -167,7 +167,8 @@ fn crossing_off_vertices(mesh: &mut TetMesh, s: u32, e: u32) -> Result<Option<Cr
 
 /// The error for vertex `v` found on the segment `e`: bad input when all three are input
 /// vertices (validation lets no vertex lie on an input edge, so this is a check of last
-/// resort), else the rounding of points added on the surface, which stops recovery.
+/// resort), else a point added on the surface found on a segment it is not on in the
+/// partition (a near copy, or a point where flips met it exactly), which stops recovery.
 pub fn vertex_on_edge(mesh: &TetMesh, v: u32, e: [u32; 2]) -> Error {
     let message = format!("vertex {v} lies on the edge ({}, {})", e[0], e[1]);
     if [v, e[0], e[1]].iter().all(|&x| !mesh.is_added(x)) {
@@ -175,7 +176,7 @@ pub fn vertex_on_edge(mesh: &TetMesh, v: u32, e: [u32; 2]) -> Error {
     } else {
         Error::new(
             ErrorKind::Limit,
-            format!("{message} (rounded points added on the surface)"),
+            format!("{message} (points added on the surface)"),
         )
     }
 }

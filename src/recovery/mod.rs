@@ -11,8 +11,10 @@
 //!    that can be meshed ([`validate::isolated_vertices`], TetGen's `.node` semantics), and
 //!    of the corners of an enlarged bounding box (§5.1), so that no input triangle lies on the
 //!    convex hull.
-//! 3. Missing edges, then missing triangles, are recovered (§5.2); with `keep_convex_hull`,
-//!    the convex hull's triangles ([`hull`]) too, and points added on those alone stay there.
+//! 3. Missing edges, then missing triangles, are recovered (§5.2), by flips and by points
+//!    added on the surface, exactly on it for the orientation tests ([`steiner`]); with
+//!    `keep_convex_hull`, the convex hull's triangles ([`hull`]) too, and points added on
+//!    those alone stay there (with their rounded coordinates).
 //!    Where that fails (a `Limit` error), the whole is tried again with, for each sub-edge
 //!    flips leave missing, a point inside the volume first ([`interior`]), then once more
 //!    with shells of edges crossed in a segment's plane shrunk first; last, with the
@@ -568,6 +570,14 @@ fn recover_by(
     }
     let normals: Vec<Point> = bounding.iter().map(|f| unit_normal(points, *f)).collect();
     suppress::suppress_all(&mut mesh, &mut part, &normals, first_hull)?;
+    // Points left on the surface (on the convex hull's triangles, where it is kept) are
+    // output with their rounded coordinates.
+    if !mesh.round_points_on_surface() {
+        return Err(Error::new(
+            ErrorKind::Limit,
+            "a point left on the convex hull is too near a plane of its tetrahedra once rounded",
+        ));
+    }
     // The copies serve attempts after a failed recovery; past it, they are freed.
     starts.attempts.clear();
     let recovered = removed(

@@ -162,6 +162,15 @@ impl Partition {
         }
     }
 
+    /// The input vertices a point of `host` is a combination of: the triangle's corners, or
+    /// the edge's ends with the first repeated.
+    pub fn corners(&self, host: Host) -> [u32; 3] {
+        match host {
+            Host::Edge([a, b]) => [a, b, a],
+            Host::Face(f) => self.input[f],
+        }
+    }
+
     /// Whether the closure of input triangle `f` holds vertex `v`: a corner of it, or a point
     /// added inside it or on one of its edges.
     pub fn holds(&self, f: usize, v: u32) -> bool {

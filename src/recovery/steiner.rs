@@ -3,34 +3,34 @@
 //! or of a mesh edge with a missing subface. The tetrahedra around the crossed facet (two)
 //! or edge (its shell) are replaced by the cone from the new point over their boundary.
 //!
-//! The point is computed in floating point, so it lies on the surface only up to rounding;
-//! which input edge or triangle it belongs to is recorded combinatorially
-//! ([`super::partition`]). The cone is accepted only if every new tetrahedron is positive.
-//! Where no set around the crossing is star-shaped from the rounded point, the tetrahedra
-//! whose closure holds it are split instead ([`holding`]); where no point near the crossing
-//! goes in, the sub-edge's midpoint is added. A crossing closer to an end of the sub-edge
-//! than [`NEAR_COPY`] of its length stops the attempt, except where a crossed edge passes
-//! the sub-edge's start within rounding (flips made it again past a point added on it): no
-//! point is added, the edge's shell joins the start's star, coned again from the start
+//! The crossing is computed in floating point; the point added is the combination of the
+//! corners of the input edge or triangle it is in nearest to it
+//! ([`crate::predicates::combination`]), exactly on the surface for the orientation tests
+//! ([`TetMesh::add_point_on`]), while its coordinates are rounded. Which input edge or
+//! triangle it belongs to is recorded combinatorially ([`super::partition`]). The cone is
+//! accepted only if every new tetrahedron is positive: a tetrahedron with its four vertices on
+//! one input triangle is not (it is flat, exactly), and the point could not have left the
+//! surface through it later ([`super::suppress`] moves a point into each piece of its star).
+//! Where no set around the crossing is star-shaped from the point, the tetrahedra whose
+//! closure holds it are split instead ([`holding`]); where no point near the crossing goes
+//! in, the sub-edge's midpoint is added. A crossing closer to an end of the sub-edge than
+//! [`NEAR_COPY`] of its length stops the attempt, except where a crossed edge passes the
+//! sub-edge's start within rounding (flips made it again past a point added on it): no point
+//! is added, the edge's shell joins the start's star, coned again from the start
 //! ([`absorb`]).
 //!
-//! A cone is also refused where one of its tetrahedra has all four vertices on one input
-//! triangle ([`flat`]): such a tetrahedron has no volume but what rounding gives it, and the
-//! point could not leave the surface through it later ([`super::suppress`] moves a point
-//! into a piece of its star, and a flat tetrahedron there bounds the piece by the plane of
-//! the surface itself). Before the rule, the stars of the points to move off the surface
-//! held no such tetrahedron on anchor, pipe and handle, and 48, 193 and 235 on Chazelle's
-//! polyhedra with two, three and seven notches a side; when it came, every corpus output
-//! stayed bit for bit the same, and Chazelle's polyhedra kept 5, 13, 15, 18, 34 and 38
-//! interior points with two to seven notches a side (5, 9, 16, 27, 28 and none before: with
-//! seven the points could not all leave).
+//! Measured when the points became exact (rounded before, with flat tetrahedra refused by
+//! their vertices' input triangles): every corpus output the same but anchor's (10 interior
+//! points, and 24 instead of 25 with the bound 1.414); Chazelle's polyhedra with two to seven
+//! notches a side 5, 11, 16, 21, 29, 34 interior points (5, 11, 15, 21, 32, 38 before).
 
 use super::edges::Crossing;
-use super::partition::Partition;
+use super::partition::{Host, Partition};
 use super::tetmesh::{key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
 use crate::geometry::{add, cross, dist, dot, midpoint, sub};
-use crate::predicates::{orient3d, Point, Sign};
+use crate::predicates::combination::Combination;
+use crate::predicates::{Point, Sign};
 use crate::triangulation::tets::INFINITE;
 
 fn scale(u: &Point, s: f64) -> Point {
@@ -58,12 +58,11 @@ fn failure(what: String) -> Error {
 }
 
 /// Replaces the tetrahedra `set`, or failing that `set` grown by its neighbours across
-/// unprotected facets (at most [`GROWTH`] times: the rounded point may fall just outside
-/// `set`), by the cone from the new point `p` over their boundary. Last, the tetrahedra
-/// around the rounded point itself ([`holding`]) are split: where the surface is planar and
-/// the points already added on it are rounded off its plane, the crossing can lie beyond a
-/// plane through the segment's start by less than any rounding, and no set around the
-/// crossing is star-shaped from the rounded point.
+/// unprotected facets (at most [`GROWTH`] times: the new point, on the surface but only
+/// near the computed crossing, may fall just outside `set`), by the cone from the new point
+/// `p` over their boundary. Last, the tetrahedra around the point itself ([`holding`]) are
+/// split: the crossing can lie beyond a plane through the segment's start by less than its
+/// rounding, and no set around the crossing is star-shaped from the point.
 fn cone(mesh: &mut TetMesh, part: &Partition, set: &[u32], p: NewPoint) -> Result<Option<u32>> {
     let start = set[0];
     let mut set = set.to_vec();
@@ -93,10 +92,7 @@ fn holding(mesh: &TetMesh, part: &Partition, t: u32, p: &Point) -> Option<Vec<u3
         !m.tets.vertices(n).contains(&INFINITE)
     })?;
     let on: Vec<usize> = (0..4)
-        .filter(|&i| {
-            let [a, b, c] = mesh.facet(at, i).map(|v| mesh.point(v));
-            orient3d(a, b, c, p) == Sign::Zero
-        })
+        .filter(|&i| mesh.orient_point(mesh.facet(at, i), p) == Sign::Zero)
         .collect();
     match on[..] {
         [] => Some(vec![at]),
@@ -138,15 +134,16 @@ fn grown(mesh: &mut TetMesh, part: &Partition, set: &[u32]) -> Vec<u32> {
     out
 }
 
-/// A point to add on the surface: where, and the input triangles whose closure holds it.
+/// A point to add on the surface: near where, and the input edge or triangle it is in.
 #[derive(Clone, Copy)]
-struct NewPoint<'a> {
+struct NewPoint {
     at: Point,
-    faces: &'a [usize],
+    host: Host,
 }
 
 /// The cone from the new point `p` over the boundary of `set`, if every tetrahedron is
-/// positive and not [`flat`], and every vertex of `set` stays.
+/// positive and every vertex of `set` stays. The point is the combination of its host's
+/// corners nearest to `p.at` ([`Combination::nearest`]): exactly on the surface.
 fn cone_over(
     mesh: &mut TetMesh,
     part: &Partition,
@@ -157,23 +154,16 @@ fn cone_over(
         // A vertex inside the set would vanish.
         return Ok(None);
     };
-    if new.iter().any(|q| flat(part, p.faces, [q[0], q[1], q[2]])) {
-        return Ok(None);
-    }
-    let s = mesh.add_point(p.at);
+    let corners = part.corners(p.host);
+    let s = match Combination::nearest(corners.map(|v| *mesh.point(v)), &p.at) {
+        Some(exact) => mesh.add_point_on(exact, corners),
+        None => mesh.add_point(p.at),
+    };
     if !new.iter().all(|&q| mesh.positive(q)) || mesh.try_replace(set, &new)?.is_none() {
         mesh.pop_point();
         return Ok(None);
     }
     Ok(Some(s))
-}
-
-/// Whether the vertices `base` lie on one of the input triangles `faces` (in its closure)
-/// with the new point: the tetrahedron joining them is flat.
-fn flat(part: &Partition, faces: &[usize], base: [u32; 3]) -> bool {
-    faces
-        .iter()
-        .any(|&f| base.iter().all(|&v| part.holds(f, v)))
 }
 
 /// How close to an end of a sub-edge, relative to its length, a crossing stops the attempt
@@ -320,8 +310,8 @@ pub fn split_subedge(
             "sub-edge ({p}, {q}) is crossed too near an end, at {point:?}"
         )));
     }
-    let faces = part.faces_of_host(part.host_of_subedge(p, q));
-    let at = |at| NewPoint { at, faces: &faces };
+    let host = part.host_of_subedge(p, q);
+    let at = |at| NewPoint { at, host };
     let added = match cone(mesh, part, &set, at(point))? {
         Some(s) => Some(s),
         // No point near the crossing went in: the sub-edge's midpoint, wherever the
@@ -366,10 +356,9 @@ pub fn split_subface(
     };
     let corners = t.map(|w| mesh.point(w));
     let point = segment_plane(mesh.point(u), mesh.point(v), corners);
-    let faces = [f];
     let new = NewPoint {
         at: point,
-        faces: &faces,
+        host: Host::Face(f),
     };
     match cone(mesh, part, &shell, new)? {
         Some(s) => {
@@ -379,27 +368,5 @@ pub fn split_subface(
         None => Err(failure(format!(
             "no valid point found on triangle {f} where edge ({u}, {v}) crosses it"
         ))),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A square split along its diagonal (0, 2) into triangles 0 and 1, point 4 added on the
-    /// diagonal: a tetrahedron from a point on the diagonal is flat exactly when its three
-    /// other vertices lie on one of the two triangles.
-    #[test]
-    fn a_tetrahedron_is_flat_when_its_base_lies_on_a_triangle_of_the_new_point() {
-        let mut part = Partition::new(&[[0, 1, 2], [0, 2, 3]]);
-        part.split_edge(0, 2, 4);
-        let faces = part.faces_of_host(part.host_of_subedge(0, 4));
-        assert_eq!(faces, [0, 1]);
-        assert!(flat(&part, &faces, [0, 1, 2]));
-        assert!(flat(&part, &faces, [4, 3, 0]));
-        assert!(!flat(&part, &faces, [1, 2, 3]));
-        assert!(!flat(&part, &[1], [0, 1, 2]));
-        // A vertex off both triangles.
-        assert!(!flat(&part, &faces, [0, 2, 5]));
     }
 }

@@ -12,15 +12,14 @@
 //! the piece's side normals, then toward the centroid of the piece's vertices, then between
 //! the two, halving the distance until every new tetrahedron is positive.
 //!
-//! Points added on a planar face are rounded off its plane, and where many crowd there the
-//! move can find no place: the point is then merged on the surface into a neighbour on the
-//! same input triangle or edge (the paper's merging, [`collapse_on_surface`]), and a point
-//! that can do neither is tried again after the others. Last, for the points still left, a
+//! Where many points crowd on a planar face the move can find no place: the point is then
+//! merged on the surface into a neighbour on the same input triangle or edge (the paper's
+//! merging, [`collapse_on_surface`]), and a point that can do neither is tried again after
+//! the others. Last, for the points still left, a
 //! piece no move fits is filled without the point: its boundary, or that boundary grown by a
 //! few layers of tetrahedra, is tetrahedralized by this module's recovery with no point
 //! allowed ([`fill_piece`]; Chazelle's polyhedron with two notches a side meshes so). The
-//! outline is triangulated without flat triangles (three points of one input edge, which
-//! rounding may show as a sliver).
+//! outline is triangulated without flat triangles (three points of one input edge).
 //!
 //! The interior points then go where they can ([`merge_interior`]): collapsed onto a
 //! neighbour (the paper's merging), or removed by filling their star, or their star and a few

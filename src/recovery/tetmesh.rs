@@ -4,7 +4,9 @@
 //!
 //! Unlike [`crate::triangulation::Triangulation`] the mesh is not kept Delaunay: every change
 //! is a [`TetMesh::replace`] of a set of tetrahedra by another set with the same boundary,
-//! accepted only when every new tetrahedron is positively oriented (exact `orient3d`).
+//! accepted only when every new tetrahedron is positively oriented (exact `orient3d`). A
+//! point added on the input surface is, for the orientation tests, exactly the combination
+//! of input vertices it was added as ([`TetMesh::add_point_on`]), until it moves.
 //!
 //! Invariants (those of [`Tets`], checked by [`TetMesh::validate`]): vertex ids index
 //! `points`; every live finite tetrahedron is positively oriented; adjacency is symmetric;
@@ -20,6 +22,7 @@ use super::by_vertex::ByVertex;
 use super::flips::{FailedRings, Protected};
 use super::suppress::FailedFills;
 use crate::error::{Error, Result};
+use crate::predicates::combination::{self, Combination, Exact};
 use crate::predicates::{insphere, orient3d, BoxFilter, Point, Sign};
 use crate::triangulation::edge_table::EdgeTable;
 use crate::triangulation::tets::{Tets, FACE, INFINITE};
@@ -55,9 +58,22 @@ pub fn key([a, b, c]: [u32; 3]) -> Key {
     [a, b, c]
 }
 
+/// A point added on the input surface: exactly the combination `at` of the input vertices
+/// `corners` (an edge's ends with the first repeated, or a triangle's corners).
+#[derive(Clone, Debug)]
+struct OnSurface {
+    at: Combination,
+    corners: [u32; 3],
+}
+
 pub struct TetMesh {
-    /// Moved only by [`TetMesh::move_point`].
+    /// Moved only by [`TetMesh::move_point`]; for a point added on the input surface, the
+    /// rounding of its combination.
     pub points: Vec<Point>,
+    /// The exact position of every point added on the input surface, as a combination of
+    /// an input triangle's or edge's corners ([`TetMesh::add_point_on`]), which the
+    /// orientation tests use.
+    on_surface: Vec<Option<Box<OnSurface>>>,
     pub tets: Tets,
     vertex_tet: Vec<u32>,
     /// The search buffer of [`TetMesh::search_ball`].
@@ -78,6 +94,8 @@ pub struct TetMesh {
     /// box, gets the ordinary filter.
     bounds: [Point; 2],
     filter: BoxFilter,
+    /// The largest [`Combination::error`] of the points added on the surface.
+    surface_error: f64,
 }
 
 /// A copy without the scratch tables and with no failed ring or filling remembered: those are
@@ -86,6 +104,7 @@ impl Clone for TetMesh {
     fn clone(&self) -> Self {
         TetMesh {
             points: self.points.clone(),
+            on_surface: self.on_surface.clone(),
             tets: self.tets.clone(),
             vertex_tet: self.vertex_tet.clone(),
             scratch: Vec::new(),
@@ -96,6 +115,7 @@ impl Clone for TetMesh {
             failed_fills: FailedFills::default(),
             bounds: self.bounds,
             filter: self.filter,
+            surface_error: self.surface_error,
         }
     }
 }
@@ -119,6 +139,7 @@ impl TetMesh {
         }
         let mut mesh = TetMesh {
             vertex_tet: vec![NONE; points.len()],
+            on_surface: vec![None; points.len()],
             points,
             tets,
             scratch: Vec::new(),
@@ -129,6 +150,7 @@ impl TetMesh {
             failed_fills: FailedFills::default(),
             bounds: [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]],
             filter: BoxFilter::new(&[0.0; 3], &[0.0; 3]),
+            surface_error: 0.0,
         };
         for v in 0..mesh.points.len() as u32 {
             mesh.enclose(v);
@@ -165,10 +187,97 @@ impl TetMesh {
     pub fn add_point(&mut self, p: Point) -> u32 {
         self.changed = true;
         self.points.push(p);
+        self.on_surface.push(None);
         self.vertex_tet.push(NONE);
         let v = (self.points.len() - 1) as u32;
         self.enclose(v);
         v
+    }
+
+    /// Adds the point `at`, a combination of the vertices `corners` (in no tetrahedron yet),
+    /// and returns its id: its coordinates are the rounding of `at`, its position for the
+    /// orientation tests `at` itself.
+    pub fn add_point_on(&mut self, at: Combination, corners: [u32; 3]) -> u32 {
+        let v = self.add_point(at.approx());
+        self.surface_error = self.surface_error.max(at.error());
+        self.on_surface[v as usize] = Some(Box::new(OnSurface { at, corners }));
+        v
+    }
+
+    /// Drops the exact position of every point added on the surface that is still in the
+    /// mesh: its coordinates are its position from now on. `false` where some tetrahedron
+    /// is no longer positive then (those points stay as they were).
+    pub fn round_points_on_surface(&mut self) -> bool {
+        if self.on_surface.iter().all(Option::is_none) {
+            return true;
+        }
+        let kept = std::mem::replace(&mut self.on_surface, vec![None; self.points.len()]);
+        let positive = self.tets.live().all(|t| {
+            let v = self.tets.vertices(t);
+            v.contains(&INFINITE) || self.orient(v) == Sign::Positive
+        });
+        if !positive {
+            self.on_surface = kept;
+        }
+        positive
+    }
+
+    /// How the orientation tests take vertex `v`.
+    fn exact(&self, v: u32) -> Exact<'_> {
+        match &self.on_surface[v as usize] {
+            Some(c) => Exact::Combination(&c.at),
+            None => Exact::Float(self.point(v)),
+        }
+    }
+
+    /// The vertices `v`, and in place of the points on the surface among them the vertices
+    /// they are combinations of, each once.
+    fn spanning(&self, v: [u32; 4]) -> SmallVec<[u32; 12]> {
+        let mut ids = SmallVec::new();
+        for x in v {
+            let of = match &self.on_surface[x as usize] {
+                Some(c) => c.corners,
+                None => [x; 3],
+            };
+            for w in of {
+                if !ids.contains(&w) {
+                    ids.push(w);
+                }
+            }
+        }
+        ids
+    }
+
+    /// Whether the vertices `ids` (spanning four points, [`TetMesh::spanning`]) are at most
+    /// three, or lie on the plane of three of them that are not collinear (exact tests on
+    /// their coordinates): points on one input triangle, or on coplanar ones, are decided so
+    /// without their exact coordinates.
+    fn on_one_plane(&self, ids: &[u32]) -> bool {
+        if ids.len() <= 3 {
+            return true;
+        }
+        let p = |x: u32| self.point(x);
+        let (a, b) = (p(ids[0]), p(ids[1]));
+        let Some(c) = ids[2..]
+            .iter()
+            .map(|&x| p(x))
+            .find(|c| !super::validate::is_degenerate(&[a, b, c]))
+        else {
+            return true;
+        };
+        ids[2..]
+            .iter()
+            .all(|&x| orient3d(a, b, c, p(x)) == Sign::Zero)
+    }
+
+    /// Whether one of `vertices` was added on the surface, exactly (input vertices, most
+    /// vertices of most tests, are not looked up).
+    #[inline]
+    fn any_on_surface(&self, vertices: &[u32]) -> bool {
+        self.surface_error > 0.0
+            && vertices
+                .iter()
+                .any(|&v| v >= self.first_added && self.on_surface[v as usize].is_some())
     }
 
     /// Grows the filter's box to hold point `v` where it does not.
@@ -194,6 +303,10 @@ impl TetMesh {
     /// Exact orientation of the facet of vertices `f` and point `p`.
     #[inline]
     pub fn orient_point(&self, f: [u32; 3], p: &Point) -> Sign {
+        if self.any_on_surface(&f) {
+            let [a, b, c] = f.map(|x| self.exact(x));
+            return combination::orient3d([a, b, c, Exact::Float(p)]);
+        }
         let [a, b, c] = f.map(|x| self.point(x));
         if self.in_box(p) {
             self.filter.orient3d(a, b, c, p)
@@ -222,6 +335,7 @@ impl TetMesh {
     /// Drops the last point added, which no tetrahedron uses.
     pub fn pop_point(&mut self) {
         self.points.pop();
+        self.on_surface.pop();
         self.vertex_tet.pop();
         // The next point added takes its number.
         self.failed_rings.clear();
@@ -230,6 +344,7 @@ impl TetMesh {
     /// Moves point `v` to `p`.
     pub fn move_point(&mut self, v: u32, p: Point) {
         self.points[v as usize] = p;
+        self.on_surface[v as usize] = None;
         self.enclose(v);
         self.failed_rings.clear();
     }
@@ -242,12 +357,29 @@ impl TetMesh {
     /// Exact orientation of four finite vertices.
     #[inline]
     pub fn orient(&self, v: [u32; 4]) -> Sign {
+        if self.any_on_surface(&v) {
+            return self.orient_on_surface(v);
+        }
         self.filter.orient3d(
             self.point(v[0]),
             self.point(v[1]),
             self.point(v[2]),
             self.point(v[3]),
         )
+    }
+
+    /// [`TetMesh::orient`] where a vertex was added on the surface: the box's filter widened
+    /// by the rounding of such points, then the filter and exact stage of combinations,
+    /// asking before the exact stage whether the vertices they are combinations of lie on
+    /// one plane.
+    #[inline(never)]
+    fn orient_on_surface(&self, v: [u32; 4]) -> Sign {
+        let [a, b, c, d] = v.map(|x| self.point(x));
+        if let Some(sign) = self.filter.orient3d_moved(a, b, c, d, self.surface_error) {
+            return sign;
+        }
+        let on_one_plane = || self.on_one_plane(&self.spanning(v));
+        combination::orient3d_or(v.map(|x| self.exact(x)), on_one_plane)
     }
 
     /// Whether the quadruple is a finite, positively oriented tetrahedron.
@@ -851,4 +983,70 @@ fn match_facets(outer: &[(Key, u32)], new: &[[u32; 4]]) -> Result<Vec<[Glue; 4]>
         return Err(mismatch(&unpack_key(outer[b])));
     }
     Ok(gluing)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tetrahedron with awkward coordinates (none a short binary fraction).
+    fn mesh() -> TetMesh {
+        let points = vec![
+            [0.1, 0.2, 0.3],
+            [1.7, 0.3, 0.1],
+            [0.3, 1.9, 0.7],
+            [0.5, 0.6, 2.3],
+        ];
+        TetMesh::delaunay(points, &[0, 1, 2, 3]).unwrap()
+    }
+
+    /// Points added on a triangle or an edge are on its plane for the orientation tests, by
+    /// the corners they are combinations of or by their exact coordinates, though their
+    /// rounded coordinates are not; moved, they are their coordinates.
+    #[test]
+    fn points_added_on_the_surface_are_exactly_on_it() {
+        let mut mesh = mesh();
+        let corners = [0, 1, 2];
+        let at = |m: &TetMesh, u, v| Combination::new(corners.map(|x| *m.point(x)), u, v);
+        let mut added = Vec::new();
+        let mut rounded_off = 0;
+        for k in 0..40 {
+            let (u, v) = (0.013 * f64::from(k), 0.31 - 0.007 * f64::from(k));
+            let s = mesh.add_point_on(at(&mesh, u, v), corners);
+            assert_eq!(mesh.orient([0, 1, 2, s]), Sign::Zero);
+            let [a, b, c] = corners.map(|x| mesh.point(x));
+            if orient3d(a, b, c, mesh.point(s)) != Sign::Zero {
+                rounded_off += 1;
+            }
+            added.push(s);
+        }
+        assert!(rounded_off > 10, "{rounded_off}");
+        // Two points of the triangle and two on its edge (0, 1): spanned by its corners.
+        let edge = [0, 1, 0].map(|x| *mesh.point(x));
+        let e = [0.37, 0.61].map(|u| mesh.add_point_on(Combination::new(edge, u, 0.0), [0, 1, 0]));
+        let four = [added[3], added[17], e[0], e[1]];
+        assert_eq!(mesh.orient(four), Sign::Zero);
+        assert_eq!(mesh.spanning(four).len(), 3);
+        // Two of the triangle and two of the edge from its corner 0 to the apex: four
+        // vertices span them, not on one plane, decided on their exact coordinates.
+        let apex_edge = [0, 3, 0].map(|x| *mesh.point(x));
+        let f = mesh.add_point_on(Combination::new(apex_edge, 0.5, 0.0), [0, 3, 0]);
+        assert_eq!(mesh.spanning([added[3], added[17], e[0], f]).len(), 4);
+        assert!(!mesh.on_one_plane(&mesh.spanning([added[3], added[17], e[0], f])));
+        assert_ne!(mesh.orient([added[3], added[17], e[0], f]), Sign::Zero);
+        // Off the plane: the apex.
+        assert_eq!(mesh.orient([0, 1, 2, 3]), mesh.orient([added[0], 1, 2, 3]));
+        assert_ne!(mesh.orient([added[5], added[9], e[0], 3]), Sign::Zero);
+        // The rounded coordinates of a point of the triangle against a face of three others:
+        // that face's plane is the triangle's, turned the other way ((u, v) of the three,
+        // (0.039, 0.289), (0.221, 0.191), (0.37, 0), turn clockwise).
+        let p = *mesh.point(added[7]);
+        let [a, b, c] = corners.map(|x| mesh.point(x));
+        let face = [added[3], added[17], e[0]];
+        assert_eq!(mesh.orient_point(face, &p), orient3d(a, b, c, &p).negate());
+        // Moved, a point is its coordinates.
+        let s = added[11];
+        mesh.move_point(s, p);
+        assert!(matches!(mesh.exact(s), Exact::Float(_)));
+    }
 }

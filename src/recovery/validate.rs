@@ -186,7 +186,7 @@ fn has_repeated_index(t: &[u32; 3]) -> bool {
 
 /// Whether the three points are collinear: their projections onto the three coordinate planes
 /// are all collinear.
-fn is_degenerate(c: &[&Point; 3]) -> bool {
+pub(super) fn is_degenerate(c: &[&Point; 3]) -> bool {
     (0..3).all(|t| Projection::dropping(t).orient(c[0], c[1], c[2]) == Sign::Zero)
 }
 
