@@ -129,7 +129,6 @@ static size_t row_count;
 /* One run's result, whoever made it. */
 typedef struct Output {
   int ok;
-  DelmeshStatus status; /* delmesh runs */
   char error[512];
   double seconds;
   RefSurfaceMesh tetgen;
@@ -175,7 +174,6 @@ static void run_delmesh(const Case *c, double ratio, Output *o) {
   DelmeshStatus st = call_delmesh(c, &options, &o->mesh);
   o->seconds = now() - start;
   o->ok = st == DELMESH_OK;
-  o->status = st;
   if (!o->ok) {
     snprintf(o->error, sizeof o->error, "status %d: %s", (int)st, delmesh_last_error_message());
     o->mesh = NULL;
@@ -187,19 +185,10 @@ static void run_delmesh(const Case *c, double ratio, Output *o) {
                               delmesh_mesh_facets(m), delmesh_mesh_facet_labels(m), delmesh_mesh_facet_count(m)};
 }
 
-/* Cases on which delmesh is known to stop with DELMESH_ERROR_LIMIT (every recovery attempt stops:
- * on a crossing too near a sub-edge's end, on its point budget, or on a point added on the
- * surface that can neither move off nor merge): reported as such, so that the list is the
- * record of what is still short. */
-static const char *const known_limits[] = {"Chazelle k=8"};
 static int listed(const char *name, const char *const *list, size_t n) {
   for (size_t i = 0; i < n; i++)
     if (strstr(name, list[i])) return 1;
   return 0;
-}
-
-static int known_limit(const Case *c) {
-  return listed(c->name, known_limits, sizeof known_limits / sizeof known_limits[0]);
 }
 
 /* Corpus files on which delmesh keeps more interior points than TetGen -pY adds: the record of
@@ -231,10 +220,6 @@ static int check_result(const Case *c, int run, Output *o) {
   int ours = run >= OURS_DEFAULT, quality = run == TETGEN_PQ || run == OURS_QUALITY;
   const char *what = run_names[run];
   if (!o->ok) {
-    if (ours && known_limit(c) && o->status == DELMESH_ERROR_LIMIT) {
-      check_note("%s | %s: known limitation (listed in known_limits): %s", c->name, what, o->error);
-      return 0;
-    }
     if (ours) return check_case(0, "%s | %s ran: %s", c->name, what, o->error);
     check_note("%s | %s failed: %s", c->name, what, o->error);
     return 0;
@@ -348,15 +333,7 @@ static void run_case(const Case *c) {
     run_tetgen(c, "pq1.414YQ", &out[TETGEN_PQ]);
   }
   run_delmesh(c, 0, &out[OURS_DEFAULT]);
-  if (known_limit(c) && out[OURS_DEFAULT].status == DELMESH_ERROR_LIMIT) {
-    /* With the bound, the same recovery runs first and stops the same way (Chazelle k = 8: the
-     * same message; with k = 7 too, those runs took a third of this test's time). */
-    memset(&out[OURS_QUALITY], 0, sizeof out[OURS_QUALITY]);
-    out[OURS_QUALITY].status = DELMESH_ERROR_LIMIT;
-    snprintf(out[OURS_QUALITY].error, sizeof out[OURS_QUALITY].error, "not run (the default run stopped in recovery)");
-  } else {
-    run_delmesh(c, QUALITY_BOUND, &out[OURS_QUALITY]);
-  }
+  run_delmesh(c, QUALITY_BOUND, &out[OURS_QUALITY]);
   int passed[RUNS];
   for (int k = 0; k < RUNS; k++) {
     passed[k] = check_result(c, k, &out[k]);
@@ -852,7 +829,7 @@ static void convex_hull_case(const char *name, const double *xyz, size_t n, cons
   int theirs = tetgen_child_run(xyz, n, tris, NULL, m, NULL, 0, NULL, 0, "pcYQ", TETGEN_TIME_LIMIT, &ref, &timing, error,
                                 sizeof error) == 0;
   if (s1 != DELMESH_OK || s0 != DELMESH_OK || !theirs) {
-    check_case(s1 == DELMESH_OK || (s1 == DELMESH_ERROR_LIMIT && listed(name, known_limits, sizeof known_limits / sizeof known_limits[0])),
+    check_case(s1 == DELMESH_OK,
                "%s, keep_convex_hull: delmesh status %d (%s), without the hull %d; TetGen -pcY %s", name, (int)s1,
                s1 == DELMESH_OK ? "ok" : delmesh_last_error_message(), (int)s0, theirs ? "ok" : error);
   } else {
@@ -927,7 +904,7 @@ int main(int argc, char **argv) {
   for (size_t i = 0; i < sizeof twists / sizeof twists[0]; i++) generated_case(surface_twisted_prism(&s, twists[i]), &s);
   /* k = 2..8, 4 to 16 notches: TetGen -pY meshes k = 2, leaves points on its boundary at k = 3 and 4,
    * returns an invalid mesh at 5 (inverted tetrahedra) and fails from 6 on (assertion, endless
-   * loop); delmesh meshes k = 2..4 and stops with DELMESH_ERROR_LIMIT from 5 on. Under --small
+   * loop); delmesh meshes every k. Under --small
    * (the sanitized run) k stops at 3: larger ones pass the C API nothing new, and took 9 of its
    * 14 minutes (ASan's allocator slows recovery, which allocates much, more than twofold). */
   for (int k = 2; k <= (small ? 3 : 8); k++) generated_case(surface_chazelle(&s, k), &s);

@@ -327,6 +327,11 @@ impl TetMesh {
         }
     }
 
+    /// The first point added after the Delaunay triangulation.
+    pub fn first_added(&self) -> u32 {
+        self.first_added
+    }
+
     /// Whether `v` was added after the Delaunay triangulation (a Steiner point).
     pub fn is_added(&self, v: u32) -> bool {
         v >= self.first_added
