@@ -103,13 +103,6 @@ impl Exact<'_> {
             Exact::Combination(c) => c.error(),
         }
     }
-
-    fn exact(&self) -> [Dyadic; 3] {
-        match self {
-            Exact::Float(p) => p.map(Dyadic::of),
-            Exact::Combination(c) => c.exact.clone(),
-        }
-    }
 }
 
 /// [`super::orient3d`] of points that may be combinations.
@@ -160,10 +153,18 @@ fn filter(points: &[Exact; 4]) -> Option<Sign> {
 #[cold]
 #[inline(never)]
 fn exact(points: &[Exact; 4]) -> Sign {
-    let p = points.map(|q| q.exact());
+    // The combinations' exact coordinates are borrowed, the others' made here.
+    let floats = points.map(|q| match q {
+        Exact::Float(p) => p.map(Dyadic::of),
+        Exact::Combination(_) => [(); 3].map(|()| Dyadic::zero()),
+    });
+    let p: [&[Dyadic; 3]; 4] = std::array::from_fn(|k| match points[k] {
+        Exact::Combination(c) => &c.exact,
+        Exact::Float(_) => &floats[k],
+    });
     let lowest = p
         .iter()
-        .flatten()
+        .flat_map(|q| q.iter())
         .filter(|x| !x.mantissa.is_zero())
         .map(|x| x.exponent)
         .min()
@@ -189,10 +190,14 @@ impl Dyadic {
                 mantissa: BigInt::from(m),
                 exponent: e,
             },
-            None => Dyadic {
-                mantissa: BigInt::zero(),
-                exponent: 0,
-            },
+            None => Dyadic::zero(),
+        }
+    }
+
+    fn zero() -> Self {
+        Dyadic {
+            mantissa: BigInt::zero(),
+            exponent: 0,
         }
     }
 

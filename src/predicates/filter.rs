@@ -340,11 +340,7 @@ impl BoxBounds {
     pub fn moved_margin(&self, moved: f64) -> f64 {
         let d = 2.0 * moved;
         let reach = self.extent + d;
-        if moved == 0.0 {
-            0.0
-        } else {
-            15.6 * d * reach * reach * (1.0 + 1e-10)
-        }
+        15.6 * d * reach * reach * (1.0 + 1e-10)
     }
 
     /// [`orient3d`] where the determinant is farther from zero than the box's bound plus

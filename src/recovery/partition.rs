@@ -155,7 +155,7 @@ impl Partition {
     }
 
     /// The input triangles whose closure holds a point of `host`.
-    pub fn faces_of_host(&self, host: Host) -> Vec<usize> {
+    fn faces_of_host(&self, host: Host) -> Vec<usize> {
         match host {
             Host::Edge(e) => self.faces_of_edge(e),
             Host::Face(f) => vec![f],
@@ -168,16 +168,6 @@ impl Partition {
         match host {
             Host::Edge([a, b]) => [a, b, a],
             Host::Face(f) => self.input[f],
-        }
-    }
-
-    /// Whether the closure of input triangle `f` holds vertex `v`: a corner of it, or a point
-    /// added inside it or on one of its edges.
-    pub fn holds(&self, f: usize, v: u32) -> bool {
-        match self.host.get(&v) {
-            Some(&Host::Face(g)) => g == f,
-            Some(&Host::Edge(e)) => sides(self.input[f]).contains(&e),
-            None => self.input[f].contains(&v),
         }
     }
 

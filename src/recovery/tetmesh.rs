@@ -205,19 +205,25 @@ impl TetMesh {
     }
 
     /// Drops the exact position of every point added on the surface that is still in the
-    /// mesh: its coordinates are its position from now on. `false` where some tetrahedron
-    /// is no longer positive then (those points stay as they were).
+    /// mesh: its coordinates are its position from now on, and the orientation tests take
+    /// the plain path again. `false` where a tetrahedron around such a point is no longer
+    /// positive then (those points stay as they were).
     pub fn round_points_on_surface(&mut self) -> bool {
-        if self.on_surface.iter().all(Option::is_none) {
-            return true;
-        }
+        let left: Vec<u32> = (self.first_added..self.points.len() as u32)
+            .filter(|&v| self.on_surface[v as usize].is_some() && self.in_mesh(v))
+            .collect();
         let kept = std::mem::replace(&mut self.on_surface, vec![None; self.points.len()]);
-        let positive = self.tets.live().all(|t| {
-            let v = self.tets.vertices(t);
-            v.contains(&INFINITE) || self.orient(v) == Sign::Positive
+        let error = std::mem::replace(&mut self.surface_error, 0.0);
+        let positive = left.iter().all(|&v| {
+            let ball = self.ball(v);
+            ball.iter().all(|&t| {
+                let q = self.tets.vertices(t);
+                q.contains(&INFINITE) || self.orient(q) == Sign::Positive
+            })
         });
         if !positive {
             self.on_surface = kept;
+            self.surface_error = error;
         }
         positive
     }
