@@ -25,8 +25,8 @@
 //! notches a side 5, 11, 16, 21, 29, 34 interior points (5, 11, 15, 21, 32, 38 before), and
 //! with the relocation of stuck points that came next ([`super::suppress`]) 5, 11, 17, 21, 27,
 //! 31, and 46 with eight (the relocation alone: 5, 11, 15, 21, 30, 36, 51). The exact tests
-//! cost time: anchor 2.0 -> 2.7 s, Chazelle's polyhedron with four notches 4.8 -> 9.3 s, with
-//! eight 38 -> 73 s (with the relocation either way).
+//! cost time (one driver run each, with the relocation either way): anchor 2.0 -> 2.6 s,
+//! Chazelle's polyhedron with four notches 4.8 -> 8.6 s, with eight 38 -> 69 s.
 
 use super::edges::Crossing;
 use super::partition::{Host, Partition};
