@@ -18,6 +18,8 @@
  *   double, compensated sums; the rounding bound is printed beside it);
  * - regions: their number, the region seeds' labels and volume bounds, the holes left empty;
  * - no Steiner point on an input triangle (exact);
+ * - quality (METRICS.md), printed: smallest dihedral angle, largest radius-edge ratio, the
+ *   tetrahedra with a dihedral angle below 5, 10 and 15 degrees;
  * - with the bound 1.414: every tetrahedron whose radius-edge ratio is above it (1e-9 relative
  *   allowance) has 3 or 4 vertices on the input surface, or is forced by the surface: its
  *   circumcenter, which refinement keeping every input triangle whole must decline, lies in the

@@ -644,13 +644,15 @@ fn an_interior_point_recovers_edges_through_a_shell() {
     );
 }
 
-/// 3-2 flips that improve the worst shape, on a Delaunay mesh with some facets protected:
-/// the mesh stays valid with the protected facets, each flip takes one tetrahedron away, the
-/// volume stays, and the worst shape (volume over the cube of the root of the summed squared
-/// edges) does not get worse.
+/// Flips that improve the worst shape, on a Delaunay mesh with some facets protected: the
+/// mesh stays valid with the protected facets, the volume stays, the worst shape (volume over
+/// the cube of the root of the summed squared edges) gets better and, with every new
+/// tetrahedron exempt but never above the worst ratio it replaces, the worst radius-edge
+/// ratio does not rise.
 #[test]
-fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
-    use delmesh::recovery::flips::{improve_by_32_flips, Bound, Protected};
+fn improving_flips_keep_the_volume_and_raise_the_worst_shape() {
+    use delmesh::quality::radius_edge;
+    use delmesh::recovery::flips::{improve_by_flips, Bound, Exempt, Protected};
     use delmesh::recovery::tetmesh::TetMesh;
     let finite = |mesh: &TetMesh| -> Vec<[[f64; 3]; 4]> {
         mesh.tets
@@ -685,17 +687,24 @@ fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
     let before = finite(&mesh);
     let all = mesh.tets.live().collect();
     let bound = Bound {
-        ratio: f64::INFINITY,
-        on_surface: None,
+        below: f64::INFINITY,
+        ratio: 0.0,
+        exempt: Exempt::All,
+        no_larger: false,
     };
-    let flips = improve_by_32_flips(&mut mesh, &protected, bound, all, &mut |_, _, _| {}).unwrap();
+    let flips = improve_by_flips(&mut mesh, &protected, bound, all, &mut |_, _, _| {}).unwrap();
     mesh.validate().unwrap();
     let after = finite(&mesh);
     assert!(flips > 0);
-    assert_eq!(after.len() + flips, before.len());
     let volume = |tets: &[[[f64; 3]; 4]]| tets.iter().map(|p| volume6(*p)).sum::<f64>();
     assert!((volume(&after) - volume(&before)).abs() <= 1e-12 * volume(&before));
-    assert!(worst(&after) >= worst(&before));
+    assert!(worst(&after) > worst(&before));
+    let worst_ratio = |tets: &[[[f64; 3]; 4]]| {
+        tets.iter()
+            .map(|p| radius_edge([&p[0], &p[1], &p[2], &p[3]]))
+            .fold(0.0, f64::max)
+    };
+    assert!(worst_ratio(&after) <= worst_ratio(&before));
     for f in &protected.facets {
         assert!(mesh.find_face(*f).is_some(), "protected facet {f:?} lost");
     }
@@ -704,11 +713,11 @@ fn improving_32_flips_remove_tetrahedra_and_keep_the_worst_shape() {
 /// With a radius-edge bound, a new tetrahedron is above it only where it has three or four of
 /// the vertices the bound calls surface vertices (here the first 100 of 200 random points),
 /// and then no worse than the worst tetrahedron before the flips (the flip's rule, no worse
-/// than the three it replaces, implies it); with no surface vertices, none is above it.
+/// than those it replaces, implies it); with no surface vertices, none is above it.
 #[test]
-fn improving_32_flips_leave_tetrahedra_above_the_bound_only_on_the_surface() {
+fn improving_flips_leave_tetrahedra_above_the_bound_only_on_the_surface() {
     use delmesh::quality::radius_edge;
-    use delmesh::recovery::flips::{improve_by_32_flips, Bound, Protected};
+    use delmesh::recovery::flips::{improve_by_flips, Bound, Exempt, Protected, IMPROVED_BELOW};
     use delmesh::recovery::tetmesh::TetMesh;
     let live = |mesh: &TetMesh| -> std::collections::HashSet<[u32; 4]> {
         mesh.tets
@@ -725,26 +734,30 @@ fn improving_32_flips_leave_tetrahedra_above_the_bound_only_on_the_surface() {
     let ratio = |mesh: &TetMesh, q: [u32; 4]| radius_edge(q.map(|v| mesh.point(v)));
     let mut counts = Vec::new();
     let first_half: Vec<bool> = (0..200).map(|v| v < 100).collect();
-    for on_surface in [None, Some(&first_half[..])] {
+    for on_surface in [false, true] {
         let mut mesh = TetMesh::delaunay(points.clone(), &used).unwrap();
         let before = live(&mesh);
         let worst_before = before.iter().map(|&q| ratio(&mesh, q)).fold(0.0, f64::max);
         let bound = Bound {
+            below: IMPROVED_BELOW,
             ratio: 1.0,
-            on_surface,
+            exempt: if on_surface {
+                Exempt::OnSurface(&first_half)
+            } else {
+                Exempt::None
+            },
+            no_larger: false,
         };
         let all = mesh.tets.live().collect();
         let protected = Protected::default();
-        let flips =
-            improve_by_32_flips(&mut mesh, &protected, bound, all, &mut |_, _, _| {}).unwrap();
+        let flips = improve_by_flips(&mut mesh, &protected, bound, all, &mut |_, _, _| {}).unwrap();
         mesh.validate().unwrap();
         for &q in live(&mesh).difference(&before) {
             let r = ratio(&mesh, q);
             let surface = q.iter().filter(|&&v| v < 100).count() >= 3;
             assert!(
-                r <= 1.0 || on_surface.is_some() && surface && r <= worst_before,
-                "{q:?} with ratio {r} ({:?})",
-                on_surface.is_some()
+                r <= 1.0 || on_surface && surface && r <= worst_before,
+                "{q:?} with ratio {r} ({on_surface})"
             );
         }
         counts.push(flips);
@@ -1220,4 +1233,65 @@ fn mesh_predicates_stay_exact_for_points_added_or_moved_far_away() {
         }
         assert!(signs.iter().all(|&n| n > 0), "{moved} {signs:?}");
     }
+}
+
+/// Flips noted between `begin` and `end` are told as the tetrahedra they removed and made, net
+/// (the mesh after them is the one before less the removed plus the made), and `undo` puts
+/// the mesh back as it was, tetrahedron for tetrahedron, valid.
+#[test]
+fn noted_flips_are_told_net_and_undone() {
+    use delmesh::recovery::flips::{remove_edge_deep, Any, Protected};
+    use delmesh::recovery::tetmesh::TetMesh;
+    let live = |mesh: &TetMesh| -> std::collections::BTreeSet<[u32; 4]> {
+        mesh.tets
+            .live()
+            .map(|t| {
+                let mut v = mesh.tets.vertices(t);
+                v.sort_unstable();
+                v
+            })
+            .collect()
+    };
+    let sorted = |q: &[u32; 4]| {
+        let mut q = *q;
+        q.sort_unstable();
+        q
+    };
+    let (points, used) = random_points(0x0d0, 120);
+    let mut mesh = TetMesh::delaunay(points, &used).unwrap();
+    let before = live(&mesh);
+    let protected = Protected::default();
+    mesh.begin();
+    let mut removed = 0;
+    for t in mesh.tets.live().step_by(7).collect::<Vec<_>>() {
+        if !mesh.tets.is_live(t) || mesh.tets.vertices(t).contains(&u32::MAX) {
+            continue;
+        }
+        let v = mesh.tets.vertices(t);
+        let mut budget = 16;
+        if remove_edge_deep(&mut mesh, &protected, [v[0], v[1]], &Any, 2, &mut budget).unwrap() {
+            removed += 1;
+        }
+    }
+    let change = mesh.end();
+    mesh.validate().unwrap();
+    assert!(removed > 5, "{removed} edges removed");
+    let after = live(&mesh);
+    let mut expected = before.clone();
+    for q in &change.removed {
+        assert!(
+            expected.remove(&sorted(q)),
+            "{q:?} removed but not there before"
+        );
+    }
+    for q in &change.created {
+        assert!(expected.insert(sorted(q)), "{q:?} made twice");
+    }
+    assert_eq!(after, expected);
+    assert!(change.created.iter().all(|q| change.made.contains(q)));
+    assert!(change.made.iter().all(|q| after.contains(&sorted(q))));
+    let back = mesh.undo(change).unwrap();
+    mesh.validate().unwrap();
+    assert_eq!(live(&mesh), before);
+    assert!(!back.is_empty() && back.iter().all(|&t| mesh.tets.is_live(t)));
 }

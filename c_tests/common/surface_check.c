@@ -538,6 +538,8 @@ int surface_check(const SurfaceInput *in, const SurfaceResult *r, double radius_
   }
 
   /* Quality. */
+  out->shapes_measured = ok && out->valid;
+  if (out->shapes_measured) out->shapes = quality_tetrahedra(r->xyz, r->tets, nt);
   double *shortest = NULL;
   if (ok && radius_edge_bound > 0) {
     shortest = shortest_surface_edges(in);
@@ -617,6 +619,9 @@ void surface_report_describe(const SurfaceReport *r, int expected_regions, int q
   ADD("%s, %zu Steiner, %d region%s, volume error %.1e (bound %.1e)", r->valid ? "valid" : "invalid", r->steiner,
       r->regions, r->regions == 1 ? "" : "s", r->volume_error, r->volume_error_bound);
   if (r->facets_checked) ADD(", facets = input");
+  if (r->shapes_measured)
+    ADD(", min dihedral %.3f, max radius-edge %.3g, dihedral < 5/10/15: %zu/%zu/%zu", r->shapes.min_dihedral,
+        r->shapes.max_radius_edge, r->shapes.dihedral_below[0], r->shapes.dihedral_below[1], r->shapes.dihedral_below[2]);
   if (quality)
     ADD(", max radius-edge %.3f, %zu above the bound (%zu with >= 3, %zu with 4 surface vertices, %zu with < 3 forced "
         "by the surface, %zu with a vertex nearer their circumcenter than their shortest edge)",

@@ -36,6 +36,8 @@
 #ifndef DELMESH_C_TESTS_SURFACE_CHECK_H
 #define DELMESH_C_TESTS_SURFACE_CHECK_H
 
+#include "quality.h"
+
 #include <stddef.h>
 #include <stdint.h>
 
@@ -88,6 +90,8 @@ typedef struct SurfaceReport {
   size_t above_forced;          /* of those with < 3, the ones the surface forces (see above) */
   size_t above_near_vertex;     /* of the others, those with a vertex nearer their circumcenter
                                  * than their shortest edge (see above) */
+  int shapes_measured;          /* the mesh is valid: `shapes` holds its figures */
+  QualitySummary shapes;        /* METRICS.md "Quality" of every tetrahedron, printed */
 } SurfaceReport;
 
 /* Every figure of `r` against `in`; `radius_edge_bound` 0 skips the quality figures. Returns 0

@@ -33,9 +33,11 @@
 //! 5. Regions are found by flood fill from the box across non-input facets; the box region
 //!    is dropped (§5.3, last remark).
 //! 6. Optional quality refinement with interior points only ([`refine`]: radius-edge and
-//!    volume bounds, TetGen's `-q`/`-a` with `-Y`), followed, with a radius-edge bound, by
-//!    3-2 flips that improve the worst shape ([`flips::improve_by_32_flips`]; a new
-//!    tetrahedron stays above the bound only with three or four surface vertices).
+//!    volume bounds, TetGen's `-q`/`-a` with `-Y`).
+//! 7. Flips that raise the worst shape ([`flips::improve_by_flips`]): with a radius-edge
+//!    bound, of every tetrahedron worse than half a regular one (a new tetrahedron stays
+//!    above the bound only with three or four surface vertices); without, of the nearly flat
+//!    ones, never raising the worst radius-edge ratio.
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
@@ -674,29 +676,44 @@ fn complete(
             points.len() as u32,
         )?;
     }
-    if options.max_radius_edge_ratio > 0.0 {
-        // Fewer and better tetrahedra in the kept regions (TetGen optimizes its refined mesh
-        // so).
-        // Where a volume bound applies, two tetrahedra above the ratio bound may also be
-        // above it: none is allowed.
-        let volumes = regions.max_volume.iter().any(|&v| v > 0.0);
-        let on_surface = part.protected.vertices_on_edges(mesh.points.len());
-        let bound = flips::Bound {
-            ratio: options.max_radius_edge_ratio,
-            on_surface: (!volumes).then_some(&on_surface),
-        };
-        let kept = mesh.tets.live().filter(|&t| regions.kept(t)).collect();
-        flips::improve_by_32_flips(
-            &mut mesh,
-            &part.protected,
-            bound,
-            kept,
-            &mut |mesh, old, new| {
-                let c = regions.component[old as usize];
-                regions.assign(mesh, new, c);
-            },
-        )?;
-    }
+    // Flips that raise the worst shape in the kept regions (TetGen optimizes its meshes so):
+    // after refinement for a ratio bound, of every tetrahedron shaped worse than half a
+    // regular one; otherwise of the nearly flat ones alone, which an input triangle's flip
+    // makes where the surface is nearly planar (a 2-3 flip recovering the diagonal of a
+    // quadrilateral of nearly coplanar vertices leaves the flat tetrahedron of its four
+    // corners).
+    let ratio = options.max_radius_edge_ratio;
+    // Without a ratio bound, the flips never raise the worst ratio of what they replace;
+    // with one, only tetrahedra with three or four vertices on the surface may stay above
+    // it. Where a volume bound applies, none may, and no new tetrahedron is larger than the
+    // largest it replaces.
+    let volumes = regions.max_volume.iter().any(|&v| v > 0.0);
+    let on_surface = part.protected.vertices_on_edges(mesh.points.len());
+    let bound = flips::Bound {
+        below: if ratio > 0.0 {
+            flips::IMPROVED_BELOW
+        } else {
+            flips::FLAT_BELOW
+        },
+        ratio,
+        exempt: match (ratio > 0.0, volumes) {
+            (false, _) => flips::Exempt::All,
+            (true, false) => flips::Exempt::OnSurface(&on_surface),
+            (true, true) => flips::Exempt::None,
+        },
+        no_larger: volumes,
+    };
+    let kept = mesh.tets.live().filter(|&t| regions.kept(t)).collect();
+    flips::improve_by_flips(
+        &mut mesh,
+        &part.protected,
+        bound,
+        kept,
+        &mut |mesh, old, new| {
+            let c = regions.component[old as usize];
+            regions.assign(mesh, new, c);
+        },
+    )?;
     classify::assemble(&mesh, points.len(), tris, &regions, &|v| {
         part.host.contains_key(&v)
     })

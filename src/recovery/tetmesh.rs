@@ -58,6 +58,12 @@ pub fn key([a, b, c]: [u32; 3]) -> Key {
     [a, b, c]
 }
 
+/// The vertices of `q` in increasing order.
+fn sorted(mut q: [u32; 4]) -> [u32; 4] {
+    q.sort_unstable();
+    q
+}
+
 /// A point added on the input surface: exactly the combination `at` of the input vertices
 /// `corners` (an edge's ends with the first repeated, or a triangle's corners).
 #[derive(Clone, Debug)]
@@ -96,6 +102,27 @@ pub struct TetMesh {
     filter: BoxFilter,
     /// The largest [`Combination::error`] of the points added on the surface.
     surface_error: f64,
+    /// The replacements made since [`TetMesh::begin`], while one is under way.
+    journal: Option<Vec<Replacement>>,
+}
+
+/// One replacement of tetrahedra (their vertices, as stored): what [`TetMesh::undo`] puts
+/// back.
+#[derive(Debug)]
+struct Replacement {
+    old: Vec<[u32; 4]>,
+    new: Vec<[u32; 4]>,
+}
+
+/// What the replacements since [`TetMesh::begin`] changed, each tetrahedron by its vertices
+/// as stored: those gone that were there before, those there that were not, and all those
+/// made that are still there (with the ones removed and made again, under new ids).
+#[derive(Debug, Default)]
+pub struct Change {
+    pub removed: Vec<[u32; 4]>,
+    pub created: Vec<[u32; 4]>,
+    pub made: Vec<[u32; 4]>,
+    journal: Vec<Replacement>,
 }
 
 /// A copy without the scratch tables and with no failed ring or filling remembered: those are
@@ -116,6 +143,7 @@ impl Clone for TetMesh {
             bounds: self.bounds,
             filter: self.filter,
             surface_error: self.surface_error,
+            journal: None,
         }
     }
 }
@@ -151,6 +179,7 @@ impl TetMesh {
             bounds: [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]],
             filter: BoxFilter::new(&[0.0; 3], &[0.0; 3]),
             surface_error: 0.0,
+            journal: None,
         };
         for v in 0..mesh.points.len() as u32 {
             mesh.enclose(v);
@@ -809,6 +838,13 @@ impl TetMesh {
 
     fn apply(&mut self, old: &[u32], new: &[[u32; 4]], gluing: &[[Glue; 4]]) -> Result<Vec<u32>> {
         self.changed = true;
+        if let Some(journal) = &mut self.journal {
+            let old = old.iter().map(|&t| self.tets.vertices(t)).collect();
+            journal.push(Replacement {
+                old,
+                new: new.to_vec(),
+            });
+        }
         for &t in old {
             self.tets.kill(t);
         }
@@ -851,6 +887,74 @@ impl TetMesh {
             self.tets.mark[t as usize] = 0;
         }
         outer
+    }
+
+    /// Starts noting the replacements, so that they can be undone together (TetGen's
+    /// `flipnm` with its `unflip`): [`TetMesh::end`] tells what they changed.
+    pub fn begin(&mut self) {
+        self.journal = Some(Vec::new());
+    }
+
+    /// Stops noting the replacements made since [`TetMesh::begin`]: what they changed, to be
+    /// kept as it is or undone ([`TetMesh::undo`]).
+    pub fn end(&mut self) -> Change {
+        let journal = self.journal.take().unwrap_or_default();
+        // Per tetrahedron (by its vertices): made minus removed, whether it was made last,
+        // and its vertices as stored. Each is made and removed at most once in turn.
+        let mut count: rustc_hash::FxHashMap<[u32; 4], (i32, bool, [u32; 4])> = Default::default();
+        for r in &journal {
+            for &q in &r.old {
+                let c = count.entry(sorted(q)).or_insert((0, false, q));
+                (c.0, c.1) = (c.0 - 1, false);
+            }
+            for &q in &r.new {
+                let c = count.entry(sorted(q)).or_insert((0, true, q));
+                (c.0, c.1) = (c.0 + 1, true);
+            }
+        }
+        let mut change = Change::default();
+        let mut all: Vec<(i32, bool, [u32; 4])> = count.into_values().collect();
+        all.sort_unstable();
+        for (c, last_made, q) in all {
+            if c < 0 {
+                change.removed.push(q);
+            } else if c > 0 {
+                change.created.push(q);
+            }
+            if last_made {
+                change.made.push(q);
+            }
+        }
+        change.journal = journal;
+        change
+    }
+
+    /// The live tetrahedron with the vertices `q`, if there is one.
+    pub fn tet_of(&mut self, q: [u32; 4]) -> Option<u32> {
+        let (t, i) = self.find_face([q[0], q[1], q[2]])?;
+        [t, self.tets.neighbor(t, i)]
+            .into_iter()
+            .find(|&u| sorted(self.tets.vertices(u)) == sorted(q))
+    }
+
+    /// Undoes the replacements of `change`, the last first; returns the ids of the
+    /// tetrahedra put back (the ones [`Change::removed`] lists).
+    pub fn undo(&mut self, change: Change) -> Result<Vec<u32>> {
+        let mut back = Vec::new();
+        for r in change.journal.into_iter().rev() {
+            let ids = r
+                .new
+                .iter()
+                .map(|&q| self.tet_of(q))
+                .collect::<Option<Vec<u32>>>()
+                .ok_or_else(|| Error::internal("a replacement to undo is not in the mesh"))?;
+            back.extend(self.replace(&ids, &r.old)?);
+        }
+        // Ids put back and removed again by an earlier replacement's undo may be reused.
+        back.retain(|&t| self.tets.is_live(t));
+        back.sort_unstable();
+        back.dedup();
+        Ok(back)
     }
 
     /// Marks `v` as no longer in the mesh (after a replacement that dropped it).
