@@ -560,8 +560,8 @@ pub fn remove_non_delaunay_edge(
 pub const IMPROVED_BELOW: f64 = 0.004;
 
 /// The shape below which a tetrahedron is nearly flat (an eight-thousandth of a regular
-/// one's: a smallest dihedral angle around a hundredth of a degree, or a radius-edge ratio in
-/// the ten thousands): [`improve_by_flips`] then also removes its edges by flips several
+/// one's: a smallest dihedral angle around a hundredth of a degree, or a radius-edge ratio of
+/// some thousands): [`improve_by_flips`] then also removes its edges by flips several
 /// levels deep, undone when they do not raise the worst shape. Without a ratio bound, only
 /// such tetrahedra are replaced: with 1e-5, the many Delaunay slivers of bunny00 (4700,
 /// against 40 below 1e-7) took 0.1 s more.
