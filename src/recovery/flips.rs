@@ -128,20 +128,38 @@ pub fn flip23(
     i: usize,
     allowed: &dyn Rule,
 ) -> Result<bool> {
-    let (d, [x, y, z]) = mesh.with_apex(t, i);
-    let (n, e) = (mesh.tets.neighbor(t, i), mesh.across(t, i));
-    if protected.facet([x, y, z]) || d == INFINITE || e == INFINITE || !allowed.edge(mesh, d, e) {
+    let Some((n, new)) = flip23_tetrahedra(mesh, protected, t, i) else {
+        return Ok(false);
+    };
+    let (d, e) = (new[0][0], new[0][3]);
+    if !allowed.edge(mesh, d, e) {
         return Ok(false);
     }
-    let new = [[d, x, y, e], [d, y, z, e], [d, z, x, e]];
     // Positive tetrahedra are finite: the rule sees finite facets only.
     if !new.iter().all(|&q| mesh.positive(q))
-        || ![x, y, z].iter().all(|&w| allowed.facet(mesh, [d, e, w]))
+        || !new.iter().all(|&q| allowed.facet(mesh, [d, e, q[1]]))
     {
         return Ok(false);
     }
     mesh.replace(&[t, n], &new)?;
     Ok(true)
+}
+
+/// The tetrahedron across facet `i` of `t` and the three tetrahedra `(d, x, y, e)`,
+/// `(d, y, z, e)`, `(d, z, x, e)` of the facet's 2-3 flip (`d` and `e` the apexes), their
+/// orientation not tested; `None` when the facet is protected or an apex infinite.
+fn flip23_tetrahedra(
+    mesh: &TetMesh,
+    protected: &Protected,
+    t: u32,
+    i: usize,
+) -> Option<(u32, [[u32; 4]; 3])> {
+    let (d, [x, y, z]) = mesh.with_apex(t, i);
+    let (n, e) = (mesh.tets.neighbor(t, i), mesh.across(t, i));
+    if protected.facet([x, y, z]) || d == INFINITE || e == INFINITE {
+        return None;
+    }
+    Some((n, [[d, x, y, e], [d, y, z, e], [d, z, x, e]]))
 }
 
 /// Removes edge `(a, b)`: its shell becomes two fans, from `a` and from
@@ -433,6 +451,14 @@ fn lifted_volume(mesh: &TetMesh, origin: &Point, q: [u32; 4]) -> f64 {
     tet_volume(p).abs() * lift / 4.0
 }
 
+/// The two tetrahedra `(a, w_j, w_i, w_k)` and `(b, w_j, w_k, w_i)` that the triangle
+/// `(i, k, j)` of edge `(a, b)`'s ring polygon `w` gives when the edge is removed
+/// ([`TetMesh::remove_edge_by_ring`] makes them so).
+fn ring_tetrahedra([a, b]: [u32; 2], ring: &[u32], [i, k, j]: [usize; 3]) -> [[u32; 4]; 2] {
+    let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
+    [[a, wj, wi, wk], [b, wj, wk, wi]]
+}
+
 /// The triangles `(i, k, j)`, `i < k < j`, of the triangulation of the ring polygon that
 /// gives the new tetrahedra `(a, w_j, w_i, w_k)` and `(b, w_j, w_k, w_i)` the best `goal`
 /// score, all of them positive, and that score; `None` if there is none with a score above
@@ -469,7 +495,7 @@ fn best_ring_triangulation(
                     continue;
                 }
                 let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
-                let (ta, tb) = ([a, wj, wi, wk], [b, wj, wk, wi]);
+                let [ta, tb] = ring_tetrahedra([a, b], ring, [i, k, j]);
                 let q = goal.join(bound, goal.pair(mesh, ta, tb));
                 if q <= best[i * n + j].0 || q <= floor {
                     continue;
@@ -563,14 +589,15 @@ pub const IMPROVED_BELOW: f64 = 0.004;
 /// one's: a smallest dihedral angle around a hundredth of a degree, or a radius-edge ratio of
 /// some thousands): [`improve_by_flips`] then also removes its edges by flips several
 /// levels deep, undone when they do not raise the worst shape. Without a ratio bound, only
-/// such tetrahedra are replaced: with 1e-5, the many Delaunay slivers of bunny00 (4700,
-/// against 40 below 1e-7) took 0.1 s more.
+/// such tetrahedra are replaced: with 1e-5, bunny00's Delaunay slivers (4,757 below it, 40
+/// below 1e-6) took 96 ms against 7.
 pub const FLAT_BELOW: f64 = 1e-6;
 
 /// The longest shell of an edge [`improve_by_flips`] removes at once: 3-2 and 4-4 flips.
 /// Longer shells gained little (armadillo with the bound 1.414: tetrahedra with a dihedral
 /// angle below 5, 10, 15 degrees 804, 1908, 3300 with shells of 4, 783, 1864, 3262 with shells
-/// up to 24, 1221, 2648, 4410 with 3-2 flips alone), and took 112 ms against 150 (65 ms).
+/// up to 24, 1221, 2648, 4410 with 3-2 flips alone), and took 112 ms against 150 (65 ms),
+/// measured with the nearly flat threshold at 1e-5.
 const IMPROVING_SHELL: usize = 4;
 
 /// Passes of [`improve_by_flips`] over the tetrahedra the previous pass made.
@@ -667,12 +694,12 @@ pub fn improve_by_flips(
             if !mesh.tets.is_live(t) || mesh.tets.vertices(t).contains(&INFINITE) {
                 continue;
             }
-            let q = mesh.tets.vertices(t);
-            if shape(mesh, q) >= bound.below {
+            let s = shape(mesh, mesh.tets.vertices(t));
+            if s >= bound.below {
                 continue;
             }
             let mut new = improving_flip(mesh, protected, bound, t)?;
-            if new.is_none() && shape(mesh, q) < FLAT_BELOW {
+            if new.is_none() && s < FLAT_BELOW {
                 new = improving_deep_removal(mesh, protected, bound, t, made)?;
             }
             if let Some(new) = new {
@@ -720,10 +747,7 @@ fn improving_flip(
         };
         let new: SmallVec<[[u32; 4]; 32]> = triangles
             .iter()
-            .flat_map(|&[i, k, j]| {
-                let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
-                [[a, wj, wi, wk], [b, wj, wk, wi]]
-            })
+            .flat_map(|&triangle| ring_tetrahedra([a, b], &ring, triangle))
             .collect();
         if bound.improved(mesh, &old, &new) {
             return mesh
@@ -732,14 +756,12 @@ fn improving_flip(
         }
     }
     for i in 0..4 {
-        let (d, [x, y, z]) = mesh.with_apex(t, i);
-        let (n, e) = (mesh.tets.neighbor(t, i), mesh.across(t, i));
-        if protected.facet([x, y, z]) || d == INFINITE || e == INFINITE {
+        let Some((n, new)) = flip23_tetrahedra(mesh, protected, t, i) else {
             continue;
-        }
-        let new = [[d, x, y, e], [d, y, z, e], [d, z, x, e]];
+        };
+        // The measures first: the exact orientations cost more.
         let old = [v, mesh.tets.vertices(n)];
-        if new.iter().all(|&q| mesh.positive(q)) && bound.improved(mesh, &old, &new) {
+        if bound.improved(mesh, &old, &new) && new.iter().all(|&q| mesh.positive(q)) {
             return mesh.replace(&[t, n], &new).map(Some);
         }
     }

@@ -688,7 +688,15 @@ fn complete(
     // it. Where a volume bound applies, none may, and no new tetrahedron is larger than the
     // largest it replaces.
     let volumes = regions.max_volume.iter().any(|&v| v > 0.0);
-    let on_surface = part.protected.vertices_on_edges(mesh.points.len());
+    let on_surface;
+    let exempt = match (ratio > 0.0, volumes) {
+        (false, _) => flips::Exempt::All,
+        (true, false) => {
+            on_surface = part.protected.vertices_on_edges(mesh.points.len());
+            flips::Exempt::OnSurface(&on_surface)
+        }
+        (true, true) => flips::Exempt::None,
+    };
     let bound = flips::Bound {
         below: if ratio > 0.0 {
             flips::IMPROVED_BELOW
@@ -696,11 +704,7 @@ fn complete(
             flips::FLAT_BELOW
         },
         ratio,
-        exempt: match (ratio > 0.0, volumes) {
-            (false, _) => flips::Exempt::All,
-            (true, false) => flips::Exempt::OnSurface(&on_surface),
-            (true, true) => flips::Exempt::None,
-        },
+        exempt,
         no_larger: volumes,
     };
     let kept = mesh.tets.live().filter(|&t| regions.kept(t)).collect();
