@@ -37,7 +37,10 @@
 //! 7. Flips that raise the worst shape ([`flips::improve_by_flips`]): with a radius-edge
 //!    bound, of every tetrahedron worse than half a regular one (a new tetrahedron stays
 //!    above the bound only with three or four surface vertices); without, of the nearly flat
-//!    ones, never raising the worst radius-edge ratio.
+//!    ones, never raising the worst radius-edge ratio. A cap (shaped worse than half a
+//!    regular tetrahedron, radius-edge ratio 100 or more) no flip of its own edges and facets
+//!    removes goes, where that is better, through the recovery of an edge from one of its
+//!    corners to a vertex nearby (§5.2's flips, undone otherwise).
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
