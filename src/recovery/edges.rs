@@ -92,8 +92,9 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
 
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
 /// Crossings are looked up again after every attempt that may have changed the mesh.
-/// Unblocking ([`unblock`]) removes edges `depth` levels deep, and stops when it meets the
-/// first crossings from both ends it met before (its flips went round in a circle). When
+/// Unblocking ([`unblock`]) removes edges `depth` levels deep (at least [`DEPTH`], from which
+/// its budget doubles with each level), and stops when it meets the first crossings from
+/// both ends it met before (its flips went round in a circle). When
 /// `guarded`, no unblocking flip may create a facet whose interior the segment crosses
 /// (TetGen's `checkflipeligibility` with a segment). With `shrink`, an edge crossed in the
 /// segment's plane whose ring cannot be triangulated at once has its shell shrunk first
@@ -106,6 +107,7 @@ pub fn recover_edge(
     guarded: bool,
     shrink: bool,
 ) -> Result<bool> {
+    debug_assert!(depth >= DEPTH, "recovery of an edge {depth} levels deep");
     let clear = Clear([a, b]);
     let rule: &dyn Rule = if guarded { &clear } else { &Any };
     let mut seen = rustc_hash::FxHashSet::default();
