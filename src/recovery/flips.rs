@@ -637,7 +637,7 @@ pub enum Exempt<'a> {
 impl Bound<'_> {
     /// Whether the tetrahedra `new`, replacing `old`, raise the worst shape and meet the
     /// bound.
-    fn improved(&self, mesh: &TetMesh, old: &[[u32; 4]], new: &[[u32; 4]]) -> bool {
+    pub(super) fn improved(&self, mesh: &TetMesh, old: &[[u32; 4]], new: &[[u32; 4]]) -> bool {
         let worst = |tets: &[[u32; 4]]| {
             tets.iter()
                 .map(|&q| shape(mesh, q))

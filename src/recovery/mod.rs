@@ -41,6 +41,9 @@
 //!    regular tetrahedron, radius-edge ratio 100 or more) no flip of its own edges and facets
 //!    removes goes, where that is better, through the recovery of an edge from one of its
 //!    corners to a vertex nearby (§5.2's flips, undone otherwise).
+//! 8. With a ratio bound alone, the wedges left far above it (a flat tetrahedron between two
+//!    input triangles that meet at a nearly flat angle) have their other diagonal split by
+//!    an interior point ([`wedges`]), and the new tetrahedra above the bound are refined.
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
@@ -62,6 +65,7 @@ pub mod steiner;
 pub mod suppress;
 pub mod tetmesh;
 pub mod validate;
+mod wedges;
 
 use rustc_hash::FxHashSet as HashSet;
 
@@ -670,15 +674,17 @@ fn complete(
     } = recovered;
     let refined =
         options.max_radius_edge_ratio > 0.0 || regions.max_volume.iter().any(|&v| v > 0.0);
-    if refined {
-        refine::refine(
+    let radii = if refined {
+        Some(refine::refine(
             &mut mesh,
             &part.protected,
             &mut regions,
             options.max_radius_edge_ratio,
             points.len() as u32,
-        )?;
-    }
+        )?)
+    } else {
+        None
+    };
     // Flips that raise the worst shape in the kept regions (TetGen optimizes its meshes so):
     // after refinement for a ratio bound, of every tetrahedron shaped worse than half a
     // regular one; otherwise of the nearly flat ones alone, which an input triangle's flip
@@ -710,20 +716,44 @@ fn complete(
         exempt,
         no_larger: volumes,
     };
-    let kept = mesh.tets.live().filter(|&t| regions.kept(t)).collect();
-    flips::improve_by_flips(
-        &mut mesh,
-        &part.protected,
-        bound,
-        kept,
-        &mut |mesh, old, new| {
-            let c = regions.component[old as usize];
-            regions.assign(mesh, new, c);
-        },
-    )?;
+    let protected = &part.protected;
+    let kept = kept_tetrahedra(&mesh, &regions);
+    flips::improve_by_flips(&mut mesh, protected, bound, kept, &mut told(&mut regions))?;
+    // With a ratio bound alone, the wedges left above it are split, and what the splits make
+    // above it refined.
+    if let Some(radii) = radii.filter(|_| ratio > 0.0 && !volumes) {
+        // Two facets of a wedge are input triangles.
+        let wedge_like =
+            |&t: &u32| regions.kept(t) && (0..4).filter(|&i| regions.on_surface(t, i)).count() == 2;
+        let candidates: Vec<u32> = mesh.tets.live().filter(wedge_like).collect();
+        let new = wedges::split_wedges(
+            &mut mesh,
+            protected,
+            bound,
+            &candidates,
+            &mut told(&mut regions),
+        )?;
+        if !new.is_empty() {
+            refine::refine_these(&mut mesh, protected, &mut regions, (ratio, radii), new)?;
+        }
+    }
     classify::assemble(&mesh, points.len(), tris, &regions, &|v| {
         part.host.contains_key(&v)
     })
+}
+
+/// The tetrahedra of the kept regions.
+fn kept_tetrahedra(mesh: &TetMesh, regions: &classify::Regions) -> Vec<u32> {
+    mesh.tets.live().filter(|&t| regions.kept(t)).collect()
+}
+
+/// How the mesh's optimization tells its changes: the new tetrahedra go in the region of the
+/// old one named.
+fn told(regions: &mut classify::Regions) -> impl FnMut(&TetMesh, u32, &[u32]) + '_ {
+    |mesh, old, new| {
+        let c = regions.component[old as usize];
+        regions.assign(mesh, new, c);
+    }
 }
 
 /// Flips the missing sub-edge `e`, where it lies inside an input triangle, to the other

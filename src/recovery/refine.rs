@@ -116,28 +116,43 @@ enum Split {
 }
 
 /// Refines the kept regions until every tetrahedron meets the bound `ratio` (0 = none) and
-/// its region's volume bound, except those whose points rule 3 declines.
+/// its region's volume bound, except those whose points rule 3 declines. Returns the
+/// protecting radii it used.
 pub fn refine(
     mesh: &mut TetMesh,
     protected: &Protected,
     regions: &mut Regions,
     ratio: f64,
     n_input: u32,
+) -> Result<ProtectingRadii> {
+    let mut refiner = Refiner::new(mesh, protected, regions, ratio);
+    refiner.run(n_input)?;
+    Ok(ProtectingRadii(refiner.lfs))
+}
+
+/// The protecting-ball radii of the input vertices (rule 3), measured once on the mesh
+/// refinement starts from.
+pub struct ProtectingRadii(Vec<f64>);
+
+/// [`refine`] of the tetrahedra `queue` and of those their points make, with the radii that
+/// refinement measured and without Lawson's pass first (which would undo the flips that
+/// followed refinement): after the wedges are split ([`super::wedges`]).
+pub fn refine_these(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    regions: &mut Regions,
+    (ratio, radii): (f64, ProtectingRadii),
+    queue: Vec<u32>,
 ) -> Result<()> {
-    let mut refiner = Refiner {
-        lfs: Vec::new(),
-        surface: Surface::new(protected, mesh.points.len()),
-        mesh,
-        regions,
-        ratio,
-        queue: BadQueue::new(),
-        flips_left: 0,
-        unflipped: Vec::new(),
-        cavity: Cavity::default(),
-        seen: Vec::new(),
-        cavities: 0,
-    };
-    refiner.run(n_input)
+    let mut refiner = Refiner::new(mesh, protected, regions, ratio);
+    refiner.flips_left = flips_for(queue.len());
+    refiner.lfs = radii.0;
+    refiner.refine(queue)
+}
+
+/// The flips Lawson's passes may make in a refinement of `tetrahedra` tetrahedra.
+fn flips_for(tetrahedra: usize) -> usize {
+    64 * tetrahedra + 1024
 }
 
 /// A Bowyer–Watson cavity as [`Refiner::cavity`] finds it.
@@ -212,18 +227,45 @@ struct Refiner<'a> {
     cavities: u32,
 }
 
-impl Refiner<'_> {
+impl<'a> Refiner<'a> {
+    fn new(
+        mesh: &'a mut TetMesh,
+        protected: &'a Protected,
+        regions: &'a mut Regions,
+        ratio: f64,
+    ) -> Self {
+        Refiner {
+            lfs: Vec::new(),
+            surface: Surface::new(protected, mesh.points.len()),
+            mesh,
+            regions,
+            ratio,
+            queue: BadQueue::new(),
+            flips_left: 0,
+            unflipped: Vec::new(),
+            cavity: Cavity::default(),
+            seen: Vec::new(),
+            cavities: 0,
+        }
+    }
+
     fn run(&mut self, n_input: u32) -> Result<()> {
         let mut kept = self.kept();
-        self.flips_left = 64 * kept.len() + 1024;
+        self.flips_left = flips_for(kept.len());
         // Every facet of the Delaunay triangulation is locally Delaunay: nothing to flip.
         if !self.mesh.is_delaunay() {
             self.lawson(kept, Lawson::RemovingEdges)?;
             kept = self.kept();
         }
         self.lfs = self.protecting_radii(n_input);
+        self.refine(kept)
+    }
+
+    /// Splits the tetrahedra of `queue` above their bounds and those the splits make, the
+    /// worst first.
+    fn refine(&mut self, queue: Vec<u32>) -> Result<()> {
         let budget = self.point_budget();
-        for t in kept {
+        for t in queue {
             self.enqueue(t);
         }
         let mut inserted = 0;
