@@ -41,9 +41,10 @@
 //!    regular tetrahedron, radius-edge ratio 100 or more) no flip of its own edges and facets
 //!    removes goes, where that is better, through the recovery of an edge from one of its
 //!    corners to a vertex nearby (§5.2's flips, undone otherwise).
-//! 8. With a ratio bound alone, the wedges left far above it (a flat tetrahedron between two
-//!    input triangles that meet at a nearly flat angle) have their other diagonal split by
-//!    an interior point ([`wedges`]), and the new tetrahedra above the bound are refined.
+//! 8. With a ratio bound, the flat tetrahedra with an input facet left far above it (a wedge
+//!    between two input triangles that meet at a nearly flat angle, a sliver on one) have an
+//!    edge split by an interior point ([`wedges`]), and the new tetrahedra above the bound
+//!    are refined.
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
@@ -719,13 +720,11 @@ fn complete(
     let protected = &part.protected;
     let kept = kept_tetrahedra(&mesh, &regions);
     flips::improve_by_flips(&mut mesh, protected, bound, kept, &mut told(&mut regions))?;
-    // With a ratio bound alone, the wedges left above it are split, and what the splits make
-    // above it refined.
-    if let Some(radii) = radii.filter(|_| ratio > 0.0 && !volumes) {
-        // Two facets of a wedge are input triangles.
-        let wedge_like =
-            |&t: &u32| regions.kept(t) && (0..4).filter(|&i| regions.on_surface(t, i)).count() == 2;
-        let candidates: Vec<u32> = mesh.tets.live().filter(wedge_like).collect();
+    // With a ratio bound, the flat tetrahedra left far above it on the surface are split, and
+    // what the splits make above it refined.
+    if let Some(radii) = radii.filter(|_| ratio > 0.0) {
+        let on_surface = |&t: &u32| regions.kept(t) && (0..4).any(|i| regions.on_surface(t, i));
+        let candidates: Vec<u32> = mesh.tets.live().filter(on_surface).collect();
         let new = wedges::split_wedges(
             &mut mesh,
             protected,
