@@ -15,8 +15,9 @@
 //! facet lies around it and its shell lies in one region; the point lies strictly inside that
 //! shell (every new tetrahedron is positive, exactly), so it is an interior point of the
 //! region and no input triangle is split. A split is kept only where it raises the worst shape
-//! of the shell and no new tetrahedron has a radius-edge ratio above the worst of the shell's
-//! and the bound; otherwise the point is dropped and nothing changes.
+//! of the shell and every new tetrahedron's radius-edge ratio is within the bound or [`GAIN`]
+//! times lower than the worst of the shell; otherwise the point is dropped and nothing
+//! changes.
 
 use smallvec::SmallVec;
 
@@ -34,10 +35,20 @@ const WIDE_ANGLE: f64 = 150.0;
 
 /// How many times the ratio bound a tetrahedron's radius-edge ratio must exceed for its edges
 /// to be split: each split's new tetrahedra above the bound are refined, and those points add
-/// up. With the bound 1.414 on armadillo (TetGen -pq1.414Y: 18,465 points): 18,452 points with
-/// 10 (747 tetrahedra with a dihedral angle below 5 degrees), 18,911 with 4 (657, and the
-/// largest ratio 354 -> 497); fandisk's largest ratio 4.1 with either (38 without splits).
+/// up. With the bound 1.414 on armadillo (TetGen -pq1.414Y: 18,465 points): 18,347 points with
+/// 10 (738 tetrahedra with a dihedral angle below 5 degrees; 18,054 and 800 without splits),
+/// 18,663 with 4 (654, and the largest ratio 354 -> 497); fandisk's largest ratio 4.1 with
+/// either (38 without splits).
 const EXCESS: f64 = 10.0;
+
+/// How many times lower than the worst radius-edge ratio of the shell every new tetrahedron's
+/// must be, unless it meets the bound: a split that trades a bad tetrahedron for others nearly
+/// as bad only gives refinement more to do around them. With the bound 1.414, Chazelle's
+/// polyhedron with three notches a side keeps 15 points (TetGen -pq1.414Y: 16, and 3 on its
+/// surface) and 111 tetrahedra below 5 degrees with 2, 21 and 122 with 1 (11 and 110 without
+/// splits), the same largest ratio; double-torus-example's largest ratio is 269 with 2, 152
+/// with 1; stanfordbunny's 45.7 with 2 and 1, 90 with 4 (448 without splits).
+const GAIN: f64 = 2.0;
 
 /// The longest shell split.
 const SPLIT_SHELL: usize = 16;
@@ -165,11 +176,14 @@ fn split(
     let s = mesh.add_point(at);
     let new: Vec<[u32; 4]> = faces.iter().map(|&[x, y, z]| [x, y, z, s]).collect();
     // Refinement then takes the new tetrahedra above the bound.
-    let no_worse = Bound {
-        exempt: Exempt::All,
+    let ratio = |q: &[u32; 4]| radius_edge(q.map(|v| mesh.point(v)));
+    let worst = old.iter().map(ratio).fold(0.0, f64::max);
+    let gain = Bound {
+        ratio: bound.ratio.max(worst / GAIN),
+        exempt: Exempt::None,
         ..bound
     };
-    if !new.iter().all(|&q| mesh.positive(q)) || !no_worse.improved(mesh, &old, &new) {
+    if !new.iter().all(|&q| mesh.positive(q)) || !gain.improved(mesh, &old, &new) {
         mesh.pop_point();
         return Ok(None);
     }
