@@ -274,14 +274,21 @@ fn place(faces: &[[Point; 3]], start: Point, length: f64) -> Point {
     let mut p = [0.0; 3];
     let (mut best, mut k) = worst(&facets, &p);
     let mut step = 0.1 * length;
-    for _ in 0..ASCENT_STEPS {
-        let near = |f: &&Facet| f.shape(&p) <= best * NEAR_WORST;
-        let mut directions = [facets[k].gradient(&p), [0.0; 3]];
-        for g in facets.iter().filter(near).map(|f| f.gradient(&p)) {
-            directions[1] = add(&directions[1], &unit(&g).unwrap_or([0.0; 3]));
+    // The worst tetrahedron's gradient, or the sum of the nearly worst ones' unit gradients.
+    let along = |nearly: bool, p: &Point, best: f64, k: usize| {
+        if !nearly {
+            return facets[k].gradient(p);
         }
+        let near = facets.iter().filter(|f| f.shape(p) <= best * NEAR_WORST);
+        near.filter_map(|f| unit(&f.gradient(p)))
+            .fold([0.0; 3], |sum, g| add(&sum, &g))
+    };
+    for _ in 0..ASCENT_STEPS {
         let mut moved = false;
-        for direction in directions.iter().filter_map(unit) {
+        for nearly in [false, true] {
+            let Some(direction) = unit(&along(nearly, &p, best, k)) else {
+                continue;
+            };
             while step >= SHORTEST_STEP * length {
                 let q = add(&p, &direction.map(|x| x * step));
                 let (w, wk) = worst(&facets, &q);
