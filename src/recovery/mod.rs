@@ -41,10 +41,10 @@
 //!    regular tetrahedron, radius-edge ratio 100 or more) no flip of its own edges and facets
 //!    removes goes, where that is better, through the recovery of an edge from one of its
 //!    corners to a vertex nearby (§5.2's flips, undone otherwise).
-//! 8. With a ratio bound, the flat tetrahedra with an input facet left far above it (a wedge
-//!    between two input triangles that meet at a nearly flat angle, a sliver on one) have an
-//!    edge split by an interior point ([`wedges`]), and the new tetrahedra above the bound
-//!    are refined.
+//! 8. With a ratio bound, the flat tetrahedra left far above it with an input facet (a wedge
+//!    between two input triangles that meet at a nearly flat angle, a sliver on one) or with
+//!    three or four vertices on the surface (which the flips may leave so) have an edge split
+//!    by an interior point ([`wedges`]), and the new tetrahedra above the bound are refined.
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
@@ -698,13 +698,10 @@ fn complete(
     // it. Where a volume bound applies, none may, and no new tetrahedron is larger than the
     // largest it replaces.
     let volumes = regions.max_volume.iter().any(|&v| v > 0.0);
-    let on_surface;
+    let on_surface = part.protected.vertices_on_edges(mesh.points.len());
     let exempt = match (ratio > 0.0, volumes) {
         (false, _) => flips::Exempt::All,
-        (true, false) => {
-            on_surface = part.protected.vertices_on_edges(mesh.points.len());
-            flips::Exempt::OnSurface(&on_surface)
-        }
+        (true, false) => flips::Exempt::OnSurface(&on_surface),
         (true, true) => flips::Exempt::None,
     };
     let bound = flips::Bound {
@@ -721,10 +718,18 @@ fn complete(
     let kept = kept_tetrahedra(&mesh, &regions);
     flips::improve_by_flips(&mut mesh, protected, bound, kept, &mut told(&mut regions))?;
     // With a ratio bound, the flat tetrahedra left far above it on the surface are split, and
-    // what the splits make above it refined.
+    // what the splits make above it refined: those with an input facet, and those with three
+    // or four vertices on the surface, which the flips may leave above the bound.
     if let Some(radii) = radii.filter(|_| ratio > 0.0) {
-        let on_surface = |&t: &u32| regions.kept(t) && (0..4).any(|i| regions.on_surface(t, i));
-        let candidates: Vec<u32> = mesh.tets.live().filter(on_surface).collect();
+        let surface_vertices = |t: u32| {
+            let on = |v: &u32| on_surface.get(*v as usize) == Some(&true);
+            mesh.tets.vertices(t).iter().filter(|v| on(v)).count()
+        };
+        let at_surface = |&t: &u32| {
+            regions.kept(t)
+                && ((0..4).any(|i| regions.on_surface(t, i)) || surface_vertices(t) >= 3)
+        };
+        let candidates: Vec<u32> = mesh.tets.live().filter(at_surface).collect();
         let new = wedges::split_wedges(
             &mut mesh,
             protected,

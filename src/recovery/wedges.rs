@@ -5,11 +5,13 @@
 //! neither flips take it away nor refinement, which declines its far circumcenter (fandisk
 //! with the bound 1.414: triangles 588-683-684 and 683-684-784, ratio 38). Its other
 //! diagonal, no input edge, is split first; for it and for the other flat tetrahedra with an
-//! input facet, then the edges where the dihedral angle is that wide, no input edges. The new
-//! interior point moves to where the worst shape of the edge's star is best (an ascent on the
-//! worst tetrahedron's shape, TetGen's `smoothpoint`): each input triangle then rests on its
-//! own tetrahedron with the point. The new tetrahedra above the bound are refined as
-//! refinement does ([`super::refine::refine_these`]).
+//! input facet or with three or four vertices on the surface (a point refinement put nearly in
+//! the plane of three surface vertices: armadillo with the bound 1.414, ratio 354), then the
+//! edges where the dihedral angle is that wide, no input edges. The new interior point moves
+//! to where the worst shape of the edge's star is best (an ascent on the worst tetrahedron's
+//! shape, TetGen's `smoothpoint`): each input triangle then rests on its own tetrahedron with
+//! the point. The new tetrahedra above the bound are refined as refinement does
+//! ([`super::refine::refine_these`]).
 //!
 //! Invariants: the split edge is no input edge, so no input triangle holds it, no protected
 //! facet lies around it and its shell lies in one region; the point lies strictly inside that
@@ -35,10 +37,10 @@ const WIDE_ANGLE: f64 = 150.0;
 
 /// How many times the ratio bound a tetrahedron's radius-edge ratio must exceed for its edges
 /// to be split: each split's new tetrahedra above the bound are refined, and those points add
-/// up. With the bound 1.414 on armadillo (TetGen -pq1.414Y: 18,465 points): 18,347 points with
-/// 10 (738 tetrahedra with a dihedral angle below 5 degrees; 18,054 and 800 without splits),
-/// 18,663 with 4 (654, and the largest ratio 354 -> 497); fandisk's largest ratio 4.1 with
-/// either (38 without splits).
+/// up. With the bound 1.414 on armadillo (TetGen -pq1.414Y: 18,465 points): 18,380 points with
+/// 10 (737 tetrahedra with a dihedral angle below 5 degrees, the largest ratio 136; 18,054, 800
+/// and 354 without splits), 18,701 with 4 (652, and the largest ratio 497); fandisk's largest
+/// ratio 4.1 with either (38 without splits).
 const EXCESS: f64 = 10.0;
 
 /// How many times lower than the worst radius-edge ratio of the shell every new tetrahedron's
