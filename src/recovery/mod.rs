@@ -44,7 +44,10 @@
 //! 8. With a ratio bound, the flat tetrahedra left far above it with an input facet (a wedge
 //!    between two input triangles that meet at a nearly flat angle, a sliver on one) or with
 //!    three or four vertices on the surface (which the flips may leave so) have an edge split
-//!    by an interior point ([`wedges`]), and the new tetrahedra above the bound are refined.
+//!    by an interior point ([`wedges`]), and the new tetrahedra above the bound are refined;
+//!    then the flips of step 7 on what the splits and that refinement made (with the bound
+//!    1.414: pinion's largest ratio 308 -> 255, armadillo's tetrahedra below 5 degrees 638 ->
+//!    608).
 //!
 //! Invariants of the result: every input triangle is a facet of the output with the same
 //! vertex indices; no vertex is added on the input surface; output vertices are the input
@@ -730,6 +733,8 @@ fn complete(
                 && ((0..4).any(|i| regions.on_surface(t, i)) || surface_vertices(t) >= 3)
         };
         let candidates: Vec<u32> = mesh.tets.live().filter(at_surface).collect();
+        // What the splits and their refinement make is noted: it gets the flips too.
+        mesh.begin();
         let new = wedges::split_wedges(
             &mut mesh,
             protected,
@@ -740,6 +745,12 @@ fn complete(
         if !new.is_empty() {
             refine::refine_these(&mut mesh, protected, &mut regions, (ratio, radii), new)?;
         }
+        let change = mesh.end();
+        let made: Vec<u32> = (change.created.iter())
+            .filter_map(|&q| mesh.tet_of(q))
+            .filter(|&t| regions.kept(t))
+            .collect();
+        flips::improve_by_flips(&mut mesh, protected, bound, made, &mut told(&mut regions))?;
     }
     classify::assemble(&mesh, points.len(), tris, &regions, &|v| {
         part.host.contains_key(&v)

@@ -11,7 +11,8 @@
 //! to where the worst shape of the edge's star is best (an ascent on the worst tetrahedron's
 //! shape, TetGen's `smoothpoint`): each input triangle then rests on its own tetrahedron with
 //! the point. The new tetrahedra above the bound are refined as refinement does
-//! ([`super::refine::refine_these`]).
+//! ([`super::refine::refine_these`]), and what that makes gets the flips that raise the worst
+//! shape ([`super::flips::improve_by_flips`]).
 //!
 //! Invariants: the split edge is no input edge, so no input triangle holds it, no protected
 //! facet lies around it and its shell lies in one region; the point lies strictly inside that
