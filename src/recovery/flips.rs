@@ -635,6 +635,15 @@ pub enum Exempt<'a> {
     All,
 }
 
+/// Whether the tetrahedron `q` has three or four vertices `v` on the surface (`on[v]`;
+/// vertices past its end are not).
+pub fn on_surface(on: &[bool], q: &[u32; 4]) -> bool {
+    q.iter()
+        .filter(|&&v| on.get(v as usize) == Some(&true))
+        .count()
+        >= 3
+}
+
 impl Bound<'_> {
     /// Whether the tetrahedra `new`, replacing `old`, raise the worst shape and meet the
     /// bound.
@@ -657,10 +666,7 @@ impl Bound<'_> {
         let ratio = |q: &[u32; 4]| radius_edge(q.map(|v| mesh.point(v)));
         let exempt = |q: &[u32; 4]| match self.exempt {
             Exempt::None => false,
-            Exempt::OnSurface(on) => {
-                let on = |x: &u32| on.get(*x as usize) == Some(&true);
-                q.iter().filter(|x| on(x)).count() >= 3
-            }
+            Exempt::OnSurface(on) => on_surface(on, q),
             Exempt::All => true,
         };
         let old_worst = || old.iter().map(ratio).fold(0.0, f64::max);

@@ -701,7 +701,12 @@ fn complete(
     // it. Where a volume bound applies, none may, and no new tetrahedron is larger than the
     // largest it replaces.
     let volumes = regions.max_volume.iter().any(|&v| v > 0.0);
-    let on_surface = part.protected.vertices_on_edges(mesh.points.len());
+    // The surface vertices, for the flips' exemption and the splits' candidates.
+    let on_surface = if ratio > 0.0 {
+        part.protected.vertices_on_edges(mesh.points.len())
+    } else {
+        Vec::new()
+    };
     let exempt = match (ratio > 0.0, volumes) {
         (false, _) => flips::Exempt::All,
         (true, false) => flips::Exempt::OnSurface(&on_surface),
@@ -724,13 +729,10 @@ fn complete(
     // what the splits make above it refined: those with an input facet, and those with three
     // or four vertices on the surface, which the flips may leave above the bound.
     if let Some(radii) = radii.filter(|_| ratio > 0.0) {
-        let surface_vertices = |t: u32| {
-            let on = |v: &u32| on_surface.get(*v as usize) == Some(&true);
-            mesh.tets.vertices(t).iter().filter(|v| on(v)).count()
-        };
         let at_surface = |&t: &u32| {
             regions.kept(t)
-                && ((0..4).any(|i| regions.on_surface(t, i)) || surface_vertices(t) >= 3)
+                && ((0..4).any(|i| regions.on_surface(t, i))
+                    || flips::on_surface(&on_surface, &mesh.tets.vertices(t)))
         };
         let candidates: Vec<u32> = mesh.tets.live().filter(at_surface).collect();
         // What the splits and their refinement make is noted: it gets the flips too.

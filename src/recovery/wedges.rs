@@ -38,10 +38,10 @@ const WIDE_ANGLE: f64 = 150.0;
 
 /// How many times the ratio bound a tetrahedron's radius-edge ratio must exceed for its edges
 /// to be split: each split's new tetrahedra above the bound are refined, and those points add
-/// up. With the bound 1.414 on armadillo (TetGen -pq1.414Y: 18,465 points): 18,380 points with
-/// 10 (737 tetrahedra with a dihedral angle below 5 degrees, the largest ratio 136; 18,054, 800
-/// and 354 without splits), 18,701 with 4 (652, and the largest ratio 497); fandisk's largest
-/// ratio 4.1 with either (38 without splits).
+/// up. With the bound 1.414 on armadillo (TetGen -pq1.414Y: 18,465 points): 18,316 points with
+/// 10 (608 tetrahedra with a dihedral angle below 5 degrees, the largest ratio 136), 18,561
+/// with 4 (524, the same largest ratio): more points than TetGen; fandisk's largest ratio 4.1
+/// with either (38 without splits).
 const EXCESS: f64 = 10.0;
 
 /// How many times lower than the worst radius-edge ratio of the shell every new tetrahedron's
