@@ -108,7 +108,7 @@ impl Rule for Any {
 }
 
 /// Shape of a positively oriented tetrahedron, scale-free, larger is better (0 when flat).
-fn shape(mesh: &TetMesh, q: [u32; 4]) -> f64 {
+pub fn shape(mesh: &TetMesh, q: [u32; 4]) -> f64 {
     let p = q.map(|v| *mesh.point(v));
     let mut s = 0.0;
     for i in 0..4 {
@@ -648,33 +648,77 @@ impl Bound<'_> {
     /// Whether the tetrahedra `new`, replacing `old`, raise the worst shape and meet the
     /// bound.
     pub(super) fn improved(&self, mesh: &TetMesh, old: &[[u32; 4]], new: &[[u32; 4]]) -> bool {
-        let worst = |tets: &[[u32; 4]]| {
-            tets.iter()
-                .map(|&q| shape(mesh, q))
-                .fold(f64::INFINITY, f64::min)
+        let before = Before {
+            shape: worst_shape(mesh, old),
+            largest: if self.no_larger {
+                largest(mesh, old)
+            } else {
+                0.0
+            },
         };
-        if worst(new) <= worst(old) {
+        self.improves_on(mesh, before, &|| worst_ratio(mesh, old), new)
+    }
+
+    /// Whether the tetrahedra `new` raise the worst shape `before.shape` of what they replace
+    /// and meet the bound, where `old_ratio` gives the worst radius-edge ratio replaced (asked
+    /// only of an exempt tetrahedron above the bound).
+    pub(super) fn improves_on(
+        &self,
+        mesh: &TetMesh,
+        before: Before,
+        old_ratio: &dyn Fn() -> f64,
+        new: &[[u32; 4]],
+    ) -> bool {
+        if worst_shape(mesh, new) <= before.shape {
             return false;
         }
-        if self.no_larger {
-            let volume = |q: &[u32; 4]| tet_volume(q.map(|v| mesh.point(v))).abs();
-            let largest = old.iter().map(volume).fold(0.0, f64::max);
-            if new.iter().any(|q| volume(q) > largest) {
-                return false;
-            }
+        if self.no_larger && new.iter().any(|q| volume(mesh, q) > before.largest) {
+            return false;
         }
-        let ratio = |q: &[u32; 4]| radius_edge(q.map(|v| mesh.point(v)));
         let exempt = |q: &[u32; 4]| match self.exempt {
             Exempt::None => false,
             Exempt::OnSurface(on) => on_surface(on, q),
             Exempt::All => true,
         };
-        let old_worst = || old.iter().map(ratio).fold(0.0, f64::max);
         new.iter().all(|q| {
-            let r = ratio(q);
-            r <= self.ratio || exempt(q) && r <= old_worst()
+            let r = ratio(mesh, q);
+            r <= self.ratio || exempt(q) && r <= old_ratio()
         })
     }
+}
+
+/// What a replacement must improve on ([`Bound::improves_on`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Before {
+    /// The worst shape replaced.
+    pub shape: f64,
+    /// The largest volume replaced (read only where [`Bound::no_larger`]).
+    pub largest: f64,
+}
+
+/// The worst shape of `tets`.
+pub fn worst_shape(mesh: &TetMesh, tets: &[[u32; 4]]) -> f64 {
+    tets.iter()
+        .map(|&q| shape(mesh, q))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// The largest volume of `tets`.
+pub fn largest(mesh: &TetMesh, tets: &[[u32; 4]]) -> f64 {
+    tets.iter().map(|q| volume(mesh, q)).fold(0.0, f64::max)
+}
+
+/// The worst radius-edge ratio of `tets`.
+pub fn worst_ratio(mesh: &TetMesh, tets: &[[u32; 4]]) -> f64 {
+    tets.iter().map(|q| ratio(mesh, q)).fold(0.0, f64::max)
+}
+
+fn volume(mesh: &TetMesh, q: &[u32; 4]) -> f64 {
+    tet_volume(q.map(|v| mesh.point(v))).abs()
+}
+
+fn ratio(mesh: &TetMesh, q: &[u32; 4]) -> f64 {
+    radius_edge(q.map(|v| mesh.point(v)))
 }
 
 /// Flips that raise the worst shape of the tetrahedra they replace (TetGen's mesh
@@ -943,7 +987,7 @@ fn improving_edge(
 /// Whether the tetrahedron `q` of shape `s` is a cap: shaped worse than [`IMPROVED_BELOW`],
 /// with a radius-edge ratio of at least [`CAP_RATIO`].
 fn is_cap(mesh: &TetMesh, q: [u32; 4], s: f64) -> bool {
-    s < IMPROVED_BELOW && radius_edge(q.map(|v| mesh.point(v))) >= CAP_RATIO
+    s < IMPROVED_BELOW && ratio(mesh, &q) >= CAP_RATIO
 }
 
 /// The radius-edge ratio from which a poorly shaped tetrahedron counts as a cap (its nearly

@@ -195,7 +195,7 @@ fn split(
 
 /// The facet of the positive tetrahedron `q` opposite its vertex `x`, ordered so that it and
 /// `x` (or any point on `x`'s side) are positive.
-fn opposite_facet(q: &[u32; 4], x: u32) -> [u32; 3] {
+pub(super) fn opposite_facet(q: &[u32; 4], x: u32) -> [u32; 3] {
     let k = q.iter().position(|&v| v == x).unwrap_or(0);
     FACE[k].map(|i| q[i])
 }
@@ -272,7 +272,7 @@ fn worst(facets: &[Facet], p: &Point) -> (f64, usize) {
 /// the tetrahedra within [`NEAR_WORST`] of the worst; a step is kept where it raises the worst
 /// shape, halved until one does (down to [`SHORTEST_STEP`] of `length`, the first step's
 /// tenfold) and doubled after one did.
-fn place(faces: &[[Point; 3]], start: Point, length: f64) -> Point {
+pub(super) fn place(faces: &[[Point; 3]], start: Point, length: f64) -> Point {
     let facets: Vec<Facet> = faces.iter().map(|f| Facet::new(f, &start)).collect();
     let mut p = [0.0; 3];
     let (mut best, mut k) = worst(&facets, &p);
