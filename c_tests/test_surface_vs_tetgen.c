@@ -33,8 +33,8 @@
  * (exactly) are not piecewise linear complexes: skipped, said so.
  *
  * Compared with TetGen, where its result passed the checks and kept -Y's promise: on every
- * generated case without volume bounds, and every corpus file but those listed in
- * more_points_than_tetgen, delmesh's Steiner points without refinement <= TetGen's
+ * generated case and corpus file without volume bounds, delmesh's Steiner points without
+ * refinement <= TetGen's
  * with -pY (both recover the same boundary with interior points only; with refinement the counts are
  * printed, not compared); with the bound 1.414, delmesh's tetrahedron count within 20% of
  * TetGen's -pq1.414Y where TetGen met its volume bounds and made at least 100
@@ -191,14 +191,6 @@ static int listed(const char *name, const char *const *list, size_t n) {
   for (size_t i = 0; i < n; i++)
     if (strstr(name, list[i])) return 1;
   return 0;
-}
-
-/* Corpus files on which delmesh keeps more interior points than TetGen -pY adds: the record of
- * what is still short there (TetGen recovers handle by flips alone). On every other file where
- * TetGen kept -Y's promise, delmesh's count is asserted to be no larger. */
-static const char *const more_points_than_tetgen[] = {"surfaces/handle.off"};
-static int more_points_listed(const Case *c) {
-  return listed(c->name, more_points_than_tetgen, sizeof more_points_than_tetgen / sizeof more_points_than_tetgen[0]);
 }
 
 /* Corpus files on which the tetrahedron count with the bound 1.414 falls outside the spread: the
@@ -688,7 +680,7 @@ static void corpus_cases(int small) {
     }
     c.regions = f.regions, c.n_regions = f.n_regions, c.holes = f.holes, c.n_holes = f.n_holes;
     c.expected_regions = 1; /* every closed file of the corpus is one connected solid */
-    c.compared = !more_points_listed(&c) && !volume_bounds(f.regions, f.n_regions);
+    c.compared = !volume_bounds(f.regions, f.n_regions);
     run_case(&c);
     surface_file_free(&f);
   }

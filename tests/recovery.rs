@@ -1492,7 +1492,8 @@ fn star_surface(seed: u64, k: i32, radii: &[i32]) -> (Vec<f64>, Vec<u32>) {
 /// without the ratio bound: each meshes, valid, with the input triangles as its facets and
 /// the enclosed volume. (TetGen -pY meshes all 52 surfaces of these four shapes with seeds
 /// 2, 9, 10, 14, 22 to 25, 27, 29, 34, 36 and 37 without any point; this recovery needs one
-/// to three interior points on 17 of them, among them the first two shapes of seed 2.)
+/// to three interior points on 11 of them, 14 in all, among them the first two shapes of
+/// seed 2; 22 on 17 with the sub-edges in the partition's order alone.)
 #[test]
 fn star_shaped_surfaces_mesh_with_interior_points_only() {
     let shapes: [(i32, &[i32]); 4] = [

@@ -1035,7 +1035,7 @@ fn fill_boundary_anew(
     ids.extend(inner);
     let local_inner: Vec<u32> = (first_inner..ids.len() as u32).collect();
     let points: Vec<Point> = ids.iter().map(|&v| *mesh.point(v)).collect();
-    let filled = super::fill_without_points(&points, &local, &local_inner)?;
+    let filled = super::fill_without_points(&points, &local, &local_inner, mesh.edge_order)?;
     let new: Vec<[u32; 4]> = filled.iter().map(|q| q.map(|v| ids[v as usize])).collect();
     // The filling's boundary is `boundary`, and its tetrahedra are positive.
     let mut faces: HashMap<Key, usize> = HashMap::default();

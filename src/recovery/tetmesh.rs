@@ -104,6 +104,17 @@ pub struct TetMesh {
     surface_error: f64,
     /// The replacements made since [`TetMesh::begin`], while one is under way.
     journal: Option<Vec<Replacement>>,
+    /// The order in which recovery takes the sub-edges it finds missing in this mesh, and in
+    /// the meshes that fill regions of it anew.
+    pub edge_order: EdgeOrder,
+}
+
+/// The order in which recovery takes missing sub-edges: the partition's, or the reverse. Which
+/// sub-edges flips recover depends on it (a recovered one is no longer flipped away).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EdgeOrder {
+    Partition,
+    Reversed,
 }
 
 /// One replacement of tetrahedra (their vertices, as stored): what [`TetMesh::undo`] puts
@@ -144,6 +155,7 @@ impl Clone for TetMesh {
             filter: self.filter,
             surface_error: self.surface_error,
             journal: None,
+            edge_order: self.edge_order,
         }
     }
 }
@@ -180,6 +192,7 @@ impl TetMesh {
             filter: BoxFilter::new(&[0.0; 3], &[0.0; 3]),
             surface_error: 0.0,
             journal: None,
+            edge_order: EdgeOrder::Partition,
         };
         for v in 0..mesh.points.len() as u32 {
             mesh.enclose(v);
