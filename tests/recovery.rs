@@ -1518,3 +1518,21 @@ fn star_shaped_surfaces_mesh_with_interior_points_only() {
         }
     }
 }
+
+/// Star-shaped surfaces TetGen -pY meshes without a point, where the sub-edges taken in the
+/// partition's order leave one or two interior points: in the reverse order, which recovery
+/// also tries where points are kept, none is needed.
+#[test]
+fn star_shaped_surfaces_the_reverse_order_recovers_by_flips() {
+    let cases: [(u64, i32, &[i32]); 3] = [
+        (14, 3, &[1, 1, 1, 9]),
+        (22, 4, &[3, 3, 3, 3, 3, 3, 3, 1]),
+        (29, 5, &[4, 4, 4, 5]),
+    ];
+    for (seed, k, radii) in cases {
+        let (xyz, triangles) = star_surface(seed * 7919 + k as u64, k, radii);
+        let mesh = tetrahedralize_surface(&xyz, &triangles, &SurfaceOptions::default()).unwrap();
+        let points = check(&xyz, &triangles, &mesh);
+        assert_eq!(points, 0, "seed {seed}, k {k}: {points} interior points");
+    }
+}
