@@ -648,15 +648,12 @@ impl Bound<'_> {
     /// Whether the tetrahedra `new`, replacing `old`, raise the worst shape and meet the
     /// bound.
     pub(super) fn improved(&self, mesh: &TetMesh, old: &[[u32; 4]], new: &[[u32; 4]]) -> bool {
-        let before = Before {
-            shape: worst_shape(mesh, old),
-            largest: if self.no_larger {
-                largest(mesh, old)
-            } else {
-                0.0
-            },
-        };
-        self.improves_on(mesh, before, &|| worst_ratio(mesh, old), new)
+        self.improves_on(
+            mesh,
+            Before::of(self, mesh, old),
+            &|| worst_ratio(mesh, old),
+            new,
+        )
     }
 
     /// Whether the tetrahedra `new` raise the worst shape `before.shape` of what they replace
@@ -696,6 +693,20 @@ pub struct Before {
     pub largest: f64,
 }
 
+impl Before {
+    /// What replacing `tets` under `bound` must improve on.
+    pub fn of(bound: &Bound, mesh: &TetMesh, tets: &[[u32; 4]]) -> Before {
+        Before {
+            shape: worst_shape(mesh, tets),
+            largest: if bound.no_larger {
+                largest(mesh, tets)
+            } else {
+                0.0
+            },
+        }
+    }
+}
+
 /// The worst shape of `tets`.
 pub fn worst_shape(mesh: &TetMesh, tets: &[[u32; 4]]) -> f64 {
     tets.iter()
@@ -704,7 +715,7 @@ pub fn worst_shape(mesh: &TetMesh, tets: &[[u32; 4]]) -> f64 {
 }
 
 /// The largest volume of `tets`.
-pub fn largest(mesh: &TetMesh, tets: &[[u32; 4]]) -> f64 {
+fn largest(mesh: &TetMesh, tets: &[[u32; 4]]) -> f64 {
     tets.iter().map(|q| volume(mesh, q)).fold(0.0, f64::max)
 }
 
