@@ -195,29 +195,42 @@ fn remove_shell(
     (shell, ring): (&[u32], &[u32]),
     allowed: &dyn Rule,
 ) -> Result<bool> {
-    if !protected.shell_may_go([a, b], ring) {
+    let Some(triangles) = shell_triangulation(mesh, protected, [a, b], ring, allowed) else {
         return Ok(false);
+    };
+    mesh.remove_edge_by_ring([a, b], (shell, ring), &triangles)?;
+    Ok(true)
+}
+
+/// The triangulation of the ring of the unprotected edge `(a, b)` that [`remove_shell`]
+/// makes, `None` where it fails (a failure is remembered, as `allowed` lets it be).
+fn shell_triangulation(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    [a, b]: [u32; 2],
+    ring: &[u32],
+    allowed: &dyn Rule,
+) -> Option<Vec<[usize; 3]>> {
+    if !protected.shell_may_go([a, b], ring) {
+        return None;
     }
     let memo = allowed
         .memo_key()
         .and_then(|rule| FailedRings::key(rule, [a, b], ring));
     if memo.is_some_and(|k| mesh.failed_rings.0.contains(&k)) {
-        return Ok(false);
+        return None;
     }
-    let Some((triangles, _)) = best_ring_triangulation(
+    let found = best_ring_triangulation(
         mesh,
         [a, b],
         ring,
         allowed,
         (Goal::Shape, f64::NEG_INFINITY),
-    ) else {
-        if let Some(k) = memo {
-            mesh.failed_rings.0.insert(k);
-        }
-        return Ok(false);
-    };
-    mesh.remove_edge_by_ring([a, b], (shell, ring), &triangles)?;
-    Ok(true)
+    );
+    if let (None, Some(k)) = (&found, memo) {
+        mesh.failed_rings.0.insert(k);
+    }
+    found.map(|(triangles, _)| triangles)
 }
 
 /// Searches known to fail, keyed by everything their result depends on: a cache, looked up
@@ -871,19 +884,15 @@ fn improving_flip(
         if !protected.shell_may_go([a, b], &ring) {
             continue;
         }
-        let old: SmallVec<[[u32; 4]; 16]> = shell.iter().map(|&u| mesh.tets.vertices(u)).collect();
-        let worst = old
+        let worst = shell
             .iter()
-            .map(|&q| shape(mesh, q))
+            .map(|&u| shape(mesh, mesh.tets.vertices(u)))
             .fold(f64::INFINITY, f64::min);
         let goal = (Goal::Shape, worst);
         let Some((triangles, _)) = best_ring_triangulation(mesh, [a, b], &ring, &Any, goal) else {
             continue;
         };
-        let new: SmallVec<[[u32; 4]; 32]> = triangles
-            .iter()
-            .flat_map(|&triangle| ring_tetrahedra([a, b], &ring, triangle))
-            .collect();
+        let (old, new) = shell_and_fans(mesh, [a, b], (&shell, &ring), &triangles);
         if bound.improved(mesh, &old, &new) {
             return mesh
                 .remove_edge_by_ring([a, b], (&shell, &ring), &triangles)
@@ -904,8 +913,9 @@ fn improving_flip(
 }
 
 /// The first removal of an edge of the nearly flat `t` by flips [`FLAT_DEPTH`] levels deep
-/// whose net change raises the worst shape and meets `bound`; its new tetrahedra. The others
-/// are undone (`made` is told the tetrahedra put back).
+/// whose net change raises the worst shape and meets `bound`; its new tetrahedra. A removal
+/// without shrinking is measured before it is made ([`plain_removal`]); the others are made,
+/// and undone (`made` is told the tetrahedra put back) where they do not improve.
 fn improving_deep_removal(
     mesh: &mut TetMesh,
     protected: &Protected,
@@ -919,6 +929,11 @@ fn improving_deep_removal(
         if protected.edge(a, b) {
             continue;
         }
+        match plain_removal(mesh, protected, bound, [a, b])? {
+            Plain::Made(new) => return Ok(Some(new)),
+            Plain::Declined => continue,
+            Plain::NeedsShrinking => {}
+        }
         mesh.begin();
         let mut budget = FLAT_BUDGET;
         let removed = remove_edge_deep(mesh, protected, [a, b], &Any, FLAT_DEPTH, &mut budget);
@@ -927,6 +942,61 @@ fn improving_deep_removal(
         }
     }
     Ok(None)
+}
+
+/// What [`plain_removal`] did.
+enum Plain {
+    /// The removal, made: its new tetrahedra.
+    Made(Vec<u32>),
+    /// Nothing: the removal does not raise the worst shape or does not meet the bound.
+    Declined,
+    /// Nothing: the shell cannot go at once.
+    NeedsShrinking,
+}
+
+/// Where the shell of edge `(a, b)` can go at once, the removal [`remove_edge_deep`] would
+/// make, measured before it is made rather than made and undone (on knot without a bound, 693
+/// of the 830 removals tried): made where it raises the worst shape and meets `bound`.
+fn plain_removal(
+    mesh: &mut TetMesh,
+    protected: &Protected,
+    bound: Bound,
+    [a, b]: [u32; 2],
+) -> Result<Plain> {
+    let Some((shell, ring)) = mesh
+        .find_edge(a, b)
+        .and_then(|t| mesh.shell(t, a, b, MAX_SHELL))
+    else {
+        return Ok(Plain::NeedsShrinking);
+    };
+    let Some(triangles) = shell_triangulation(mesh, protected, [a, b], &ring, &Any) else {
+        return Ok(Plain::NeedsShrinking);
+    };
+    let (old, new) = shell_and_fans(mesh, [a, b], (&shell, &ring), &triangles);
+    if !bound.improved(mesh, &old, &new) {
+        return Ok(Plain::Declined);
+    }
+    let made = mesh.remove_edge_by_ring([a, b], (&shell, &ring), &triangles)?;
+    Ok(Plain::Made(made))
+}
+
+/// Tetrahedra by their vertices, `N` of them without allocation.
+type Quads<const N: usize> = SmallVec<[[u32; 4]; N]>;
+
+/// The tetrahedra of the shell of `(a, b)` and the two fans over the ring's `triangles` that
+/// replace them.
+fn shell_and_fans(
+    mesh: &TetMesh,
+    [a, b]: [u32; 2],
+    (shell, ring): (&[u32], &[u32]),
+    triangles: &[[usize; 3]],
+) -> (Quads<16>, Quads<32>) {
+    let old = shell.iter().map(|&u| mesh.tets.vertices(u)).collect();
+    let new = triangles
+        .iter()
+        .flat_map(|&triangle| ring_tetrahedra([a, b], ring, triangle))
+        .collect();
+    (old, new)
 }
 
 /// Ends the replacements noted since [`TetMesh::begin`]: kept when `done` holds and their net
