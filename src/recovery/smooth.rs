@@ -24,8 +24,8 @@ use crate::quality::min_dihedral;
 /// moves, 33, 87, 223 with 15, 32, 86, 219 with 20; fandisk 9, 22, 102 without, 9, 16, 59 with
 /// 15 or 20; armadillo 608, 1,634, 2,982 without, 598, 1,592, 2,777 with 15. Moving the points
 /// of every tetrahedron shaped worse than half a regular one (on armadillo 15,311 of its
-/// 18,316 points) gave bunny00 25, 73, 191 but took 40% more time in all; two more rounds after the flips gained 5 on
-/// bunny00 and on armadillo.
+/// 18,316 points) gave bunny00 25, 73, 191 but took 40% more time in all; two more rounds
+/// after the flips gained 5 on bunny00 and on armadillo.
 pub const SMOOTH_BELOW: f64 = 15.0;
 
 /// Moves, in increasing order, each added point off the surface (`on[v]` false or past its
