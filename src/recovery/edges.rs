@@ -90,26 +90,41 @@ pub fn first_crossing(mesh: &mut TetMesh, a: u32, b: u32) -> Result<Option<Cross
     })
 }
 
+/// What the unblocking flips of a segment may create ([`recover_edge`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Guard {
+    /// Anything.
+    Open,
+    /// No facet whose interior the segment crosses ([`Clear`]).
+    Clear,
+    /// Neither such a facet nor an edge whose interior the segment crosses, nor a facet in
+    /// the segment's plane whose sides it crosses ([`Eligible`]: TetGen's
+    /// `checkflipeligibility` with a segment).
+    Eligible,
+}
+
 /// Recovers edge `(a, b)` by flips; `false` if it is still missing when no flip helps.
 /// Crossings are looked up again after every attempt that may have changed the mesh.
 /// Unblocking ([`unblock`]) removes edges `depth` levels deep (at least [`DEPTH`], from which
 /// its budget doubles with each level), and stops when it meets the first crossings from
-/// both ends it met before (its flips went round in a circle). When
-/// `guarded`, no unblocking flip may create a facet whose interior the segment crosses
-/// (TetGen's `checkflipeligibility` with a segment). With `shrink`, an edge crossed in the
-/// segment's plane whose ring cannot be triangulated at once has its shell shrunk first
-/// ([`SHRINK_DEPTH`]).
+/// both ends it met before (its flips went round in a circle); `guard` says what its flips
+/// may create. With `shrink`, an edge crossed in the segment's plane whose ring cannot be
+/// triangulated at once has its shell shrunk first ([`SHRINK_DEPTH`]).
 pub fn recover_edge(
     mesh: &mut TetMesh,
     protected: &Protected,
     [a, b]: [u32; 2],
     depth: u32,
-    guarded: bool,
+    guard: Guard,
     shrink: bool,
 ) -> Result<bool> {
     debug_assert!(depth >= DEPTH, "recovery of an edge {depth} levels deep");
-    let clear = Clear([a, b]);
-    let rule: &dyn Rule = if guarded { &clear } else { &Any };
+    let (clear, eligible) = (Clear([a, b]), Eligible([a, b]));
+    let rule: &dyn Rule = match guard {
+        Guard::Open => &Any,
+        Guard::Clear => &clear,
+        Guard::Eligible => &eligible,
+    };
     let mut seen = rustc_hash::FxHashSet::default();
     'flips: for _ in 0..MAX_FLIPS {
         // A failed advance changes nothing unless it shrinks: its crossings still hold after
@@ -268,7 +283,95 @@ impl Rule for Clear {
         !crosses(mesh, f, self.0[0], self.0[1])
     }
 
+    /// The segment's ends, the lower first (the rule does not depend on their order).
     fn memo_key(&self) -> Option<[u32; 2]> {
-        Some(self.0)
+        let [a, b] = self.0;
+        Some([a.min(b), a.max(b)])
+    }
+}
+
+/// TetGen's rule for the flips that recover a segment (`checkflipeligibility`): no new
+/// facet whose interior the segment crosses, no new edge whose interior it crosses, and no
+/// new facet in the segment's plane whose sides it crosses.
+pub struct Eligible(pub [u32; 2]);
+
+impl Rule for Eligible {
+    fn edge(&self, mesh: &TetMesh, u: u32, w: u32) -> bool {
+        let [a, b] = self.0;
+        if [u, w].iter().any(|x| [a, b, INFINITE].contains(x))
+            || mesh.orient([a, b, u, w]) != Sign::Zero
+        {
+            return true;
+        }
+        // The four points are in a plane; a vertex off it tells the sides of a line in it.
+        match mesh.off_plane([u, a, b]) {
+            Some(x) => !crosses_in_plane(mesh, [a, b], [u, w], x),
+            // No such vertex at hand: refused, as a crossing may not be ruled out.
+            None => false,
+        }
+    }
+
+    fn facet(&self, mesh: &TetMesh, f: [u32; 3]) -> bool {
+        let [a, b] = self.0;
+        if crosses(mesh, f, a, b) {
+            return false;
+        }
+        if f.contains(&INFINITE)
+            || mesh.orient([f[0], f[1], f[2], a]) != Sign::Zero
+            || mesh.orient([f[0], f[1], f[2], b]) != Sign::Zero
+        {
+            return true;
+        }
+        // In the facet's plane: its sides must not cross the segment; a vertex off the plane
+        // tells the sides of a line in it.
+        let Some(x) = mesh.off_plane(f) else {
+            return false;
+        };
+        (0..3).all(|k| !crosses_in_plane(mesh, [a, b], [f[k], f[(k + 1) % 3]], x))
+    }
+
+    /// The segment's ends, the higher first: not [`Clear`]'s name.
+    fn memo_key(&self) -> Option<[u32; 2]> {
+        let [a, b] = self.0;
+        Some([a.max(b), a.min(b)])
+    }
+}
+
+/// Whether the coplanar segments `(a, b)` and `(u, w)` cross at one point inside both: each
+/// separates the other's ends in their plane, where the side of a point `p` of the line
+/// `(s, t)` is the sign of `orient(s, t, x, p)`, `x` a vertex off the plane.
+fn crosses_in_plane(mesh: &TetMesh, [a, b]: [u32; 2], [u, w]: [u32; 2], x: u32) -> bool {
+    let separates = |[s, t]: [u32; 2], [p, q]: [u32; 2]| {
+        let (sp, sq) = (mesh.orient([s, t, x, p]), mesh.orient([s, t, x, q]));
+        sp != Sign::Zero && sp == sq.negate()
+    };
+    separates([a, b], [u, w]) && separates([u, w], [a, b])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A square in the plane z = 0 with apexes above and below its centre: its diagonal
+    /// (0, 2) crosses the other diagonal (1, 3) and the apexes' edge (4, 5) at its middle,
+    /// and the sides of the triangle (1, 2, 3) of its plane.
+    #[test]
+    fn tetgens_rule_refuses_what_the_segment_crosses_in_its_plane() {
+        let points = vec![
+            [0.0, 0.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 2.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [1.0, 1.0, 1.0],
+            [1.0, 1.0, -1.0],
+        ];
+        let mesh = TetMesh::delaunay(points, &[0, 1, 2, 3, 4, 5]).unwrap();
+        let rule = Eligible([0, 2]);
+        assert!(!rule.edge(&mesh, 1, 3) && !rule.edge(&mesh, 4, 5));
+        assert!(rule.edge(&mesh, 1, 4) && rule.edge(&mesh, 0, 4) && rule.edge(&mesh, 2, 5));
+        assert!(!rule.facet(&mesh, [1, 2, 3]) && !rule.facet(&mesh, [3, 0, 1]));
+        assert!(rule.facet(&mesh, [0, 1, 2]) && rule.facet(&mesh, [1, 3, 4]));
+        // The guarded rule refuses only facets whose interior the segment crosses.
+        assert!(Clear([0, 2]).facet(&mesh, [1, 2, 3]));
     }
 }

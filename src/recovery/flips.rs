@@ -16,7 +16,7 @@
 use rustc_hash::FxHashSet;
 use smallvec::SmallVec;
 
-use super::edges::{first_crossing, recover_edge, Crossing, DEPTH};
+use super::edges::{first_crossing, recover_edge, Crossing, Guard, DEPTH};
 use super::partition::{pair, sides};
 use super::tetmesh::{key, Key, TetMesh};
 use crate::error::{Error, ErrorKind, Result};
@@ -1130,7 +1130,7 @@ fn edge_taking(
     e: [u32; 2],
     q: [u32; 4],
 ) -> Result<bool> {
-    match recover_edge(mesh, protected, e, DEPTH, false, false) {
+    match recover_edge(mesh, protected, e, DEPTH, Guard::Open, false) {
         Ok(true) => {}
         Ok(false) => return Ok(false),
         // A vertex on the segment, the only error recovery reports but a bug's: no such edge.

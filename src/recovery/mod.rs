@@ -21,11 +21,12 @@
 //!    subfaces around every point added on the surface made Delaunay in their triangle
 //!    ([`ATTEMPTS`]). Up to their first point, attempts that shrink shells alike do the
 //!    same: that start is made once ([`Start`]). The flip passes before points are added
-//!    follow a schedule; where the first schedule's mesh has interior points, the others are
-//!    run too, then all of them with the missing sub-edges in the reverse order
-//!    ([`EdgeOrder`]), and the fewest points win ([`SCHEDULES`]); a schedule that begins with
-//!    passes an earlier one made in the same order goes on from a copy of the state they left
-//!    ([`Prefix`]).
+//!    follow a schedule; where the first run's mesh has interior points, the other runs are
+//!    made too: three schedules with the missing sub-edges in the partition's order, the
+//!    same in the reverse order ([`EdgeOrder`]), then one under TetGen's rule for flips in
+//!    both orders, and the fewest points win ([`RUNS`]); a
+//!    schedule that begins with passes an earlier one made in the same order, or with none,
+//!    goes on from a copy of the state they left ([`Prefix`]).
 //! 4. Points added on the surface are moved off it, then merged away, or removed where their
 //!    star, or their star and a few layers around it, can be filled again without them by
 //!    this same recovery with no point allowed (§5.3, [`suppress`]), or two neighbouring
@@ -83,7 +84,10 @@ use rustc_hash::FxHashSet as HashSet;
 use crate::error::{Error, ErrorKind, Result};
 use crate::mesh::Mesh;
 use crate::predicates::Point;
-use edges::{DEEPEST, DEPTH};
+use edges::{
+    Guard::{self, Clear, Eligible, Open},
+    DEEPEST, DEPTH,
+};
 use partition::Partition;
 use tetmesh::{EdgeOrder, TetMesh};
 
@@ -161,37 +165,35 @@ pub fn tetrahedralize_surface(
         options,
         edge_order: EdgeOrder::Partition,
     };
-    // The first schedule's error is the one reported; where it needs points, the others
-    // are tried too, then all of them with the sub-edges in the reverse order, and the
-    // fewest points win (the first among equals).
-    let mut starts = Starts::default();
-    let mut best = recover(&input, &mut intersections, &mut starts, SCHEDULES[0]);
-    for (order, schedules) in [
-        (EdgeOrder::Partition, &SCHEDULES[1..]),
-        (EdgeOrder::Reversed, &SCHEDULES[..]),
-    ] {
-        if order == EdgeOrder::Reversed {
-            // The kept copies serve one order.
-            starts = Starts::default();
-        }
+    // The first run's error is the one reported; where it needs points, the other runs are
+    // made too, and the fewest points win (the first among equals).
+    let mut best: Option<Result<Recovered>> = None;
+    // The copies each order keeps for its later runs; freed before refinement.
+    let mut starts = [Starts::default(), Starts::default()];
+    for (k, &(order, schedule)) in RUNS.iter().enumerate() {
+        let fewest = match &best {
+            None => usize::MAX,
+            Some(Ok(b)) if !b.kept.is_empty() => b.kept.len(),
+            Some(_) => break,
+        };
         let input = Input {
             edge_order: order,
             ..input
         };
-        for &schedule in schedules {
-            let fewest = match &best {
-                Ok(b) if !b.kept.is_empty() => b.kept.len(),
-                _ => break,
-            };
-            match recover(&input, &mut intersections, &mut starts, schedule) {
-                Ok(other) if other.kept.len() < fewest => best = Ok(other),
-                _ => {}
-            }
+        let starts = &mut starts[usize::from(order == EdgeOrder::Reversed)];
+        starts.later = RUNS[k + 1..]
+            .iter()
+            .filter(|(o, _)| *o == order)
+            .map(|&(_, s)| s)
+            .collect();
+        match recover(&input, &mut intersections, starts, schedule) {
+            Ok(other) if other.kept.len() < fewest => best = Some(Ok(other)),
+            Err(e) if best.is_none() => best = Some(Err(e)),
+            _ => {}
         }
     }
-    // The kept copies are freed before refinement.
     drop(starts);
-    match best {
+    match best.unwrap_or_else(|| Err(Error::internal("no recovery was run"))) {
         Ok(recovered) => complete(recovered, points, tris, options),
         // A self-intersection is the first cause to report.
         Err(e) => intersections.run().and(Err(e)),
@@ -223,40 +225,64 @@ struct Recovered {
 
 /// The passes of [`Progress::by_flips`] over the sub-edges flips leave missing: the depth of
 /// each pass's edge removals and whether they are guarded ([`edges::recover_edge`]).
-type Schedule = &'static [(u32, bool)];
+type Schedule = &'static [(u32, Guard)];
 
-/// The schedules recovery runs with: the first always, the others where the first leaves
-/// interior points. Where the unguarded search at [`edges::DEPTH`] leaves sub-edges
-/// missing, a guarded one at that depth recovers as many as the deeper unguarded ones, in a
-/// fraction of their time (fandisk: 5 left, 4 after either, in 3 ms against 34 ms), so the
-/// first schedule takes it first. Which schedule needs the fewest points varies from input
-/// to input (a sub-edge recovered by other flips changes where every later point goes):
-/// interior points with each schedule in order, anchor 12 / 13 / 13, joint 5 / 4 / 7,
-/// sphere966 3 / 1 / 2, handle 8 / 8 / 9, Chazelle's polyhedron with two notches a side
-/// 7 / 7 / 6 (TetGen 6). The second is the one used alone before. The order in which the
-/// passes take the missing sub-edges matters as much: with the three in the partition's order,
-/// then in the reverse order, anchor 11 / 10 / 11 then 8 / 8 / 9, handle 2 / 2 / 1 then 1 / 0,
-/// joint 1 / 1 / 1 then 3 / 4 / 3, pipe 5 / 6 / 5 then 7 / 6 / 6 (TetGen 24, 0, 3, 18); on the
-/// star-shaped surfaces of the tests 22 points on 17 of 52 in the partition's order, 14 on 11
-/// with both.
-const SCHEDULES: [Schedule; 3] = [
-    &[
-        (DEPTH, false),
-        (DEPTH, true),
-        (DEPTH + 1, true),
-        (DEEPEST, true),
-    ],
-    &[
-        (DEPTH, false),
-        (DEPTH + 1, false),
-        (DEEPEST, false),
-        (DEEPEST, true),
-    ],
-    &[(DEPTH, false), (DEPTH, true), (DEEPEST, true)],
+/// Guarded passes, deeper and deeper. Where the unguarded search at [`edges::DEPTH`] leaves
+/// sub-edges missing, a guarded one at that depth recovers as many as the deeper unguarded
+/// ones, in a fraction of their time (fandisk: 5 left, 4 after either, in 3 ms against 34
+/// ms), so the first run takes it first.
+const GUARDED: Schedule = &[
+    (DEPTH, Open),
+    (DEPTH, Clear),
+    (DEPTH + 1, Clear),
+    (DEEPEST, Clear),
+];
+/// Unguarded passes down to the deepest, then a guarded one.
+const OPEN: Schedule = &[
+    (DEPTH, Open),
+    (DEPTH + 1, Open),
+    (DEEPEST, Open),
+    (DEEPEST, Clear),
+];
+/// A guarded pass, then the deepest.
+const SHORT: Schedule = &[(DEPTH, Open), (DEPTH, Clear), (DEEPEST, Clear)];
+/// TetGen's way: its rule from the first pass ([`edges::Eligible`]), at [`edges::DEPTH`] then
+/// a level deeper. Measured against it (debug driver, one run each, two at a time): with a
+/// pass at [`edges::DEEPEST`] after those, the same star-shaped surfaces, Chazelle's
+/// polyhedron with three notches a side 11 points instead of 10, anchor 10.2 s instead of 8.8;
+/// at [`edges::DEPTH`] alone, 11 points on the star-shaped surfaces instead of 10, Chazelle 11,
+/// pipe 4 instead of 5 in a worse-shaped mesh (largest radius-edge ratio 121 instead of 22
+/// without a bound, 431 with 1.414); after the unguarded pass, 13 on the star-shaped surfaces,
+/// Chazelle's polyhedron with four notches a side 14 instead of 15 but with three 11.
+const ELIGIBLE: Schedule = &[(DEPTH, Eligible), (DEPTH + 1, Eligible)];
+
+/// The runs of recovery, each a schedule with the sub-edges in the partition's order or in
+/// the reverse order ([`EdgeOrder`]): the first always, the others where it leaves interior
+/// points, and the fewest points win (the first among equals). Which run needs the fewest
+/// varies from input to input (a sub-edge recovered by other flips changes where every later
+/// point goes). Interior points with each of the first six in turn: anchor 11 / 10 / 11, 8 /
+/// 8 / 9; joint 1 / 1 / 1, 3 / 4 / 3; handle 2 / 2 / 1, 1 / 0; pipe 5 / 6 / 5, 7 / 6 / 6;
+/// Chazelle's polyhedra with two to eight notches a side 6 / 5 / 6, 6 / 6 / 6; 13 / 11 / 12,
+/// 14 / 13 / 12; 17 / 20 / 17, 17 / 16 / 15; 23 / 26 / 21, 25 / 24 / 26; 29 / 29 / 27, 37 /
+/// 35 / 38; 31 / 40 / 37, 36 / 41 / 36; 50 / 46 / 53, 46 / 48 / 42 (TetGen 24, 3, 0, 18, 6,
+/// 8, 14 and 20 with points on its boundary too from three notches, none from six: it
+/// fails). The last two, under TetGen's rule, take Chazelle's polyhedron with three notches
+/// a side to 10 points and the star-shaped surfaces of the tests from 14 points on 11 of 52
+/// to 10 on 8; on anchor, joint, handle, pipe and Chazelle's with two and four notches they
+/// do no better.
+static RUNS: [(EdgeOrder, Schedule); 8] = [
+    (EdgeOrder::Partition, GUARDED),
+    (EdgeOrder::Partition, OPEN),
+    (EdgeOrder::Partition, SHORT),
+    (EdgeOrder::Reversed, GUARDED),
+    (EdgeOrder::Reversed, OPEN),
+    (EdgeOrder::Reversed, SHORT),
+    (EdgeOrder::Partition, ELIGIBLE),
+    (EdgeOrder::Reversed, ELIGIBLE),
 ];
 
 /// The schedule of [`fill_without_points`].
-const FILL: Schedule = &[(DEPTH, false), (DEPTH, true)];
+const FILL: Schedule = &[(DEPTH, Open), (DEPTH, Clear)];
 
 /// Recovery with `schedule` by the attempts in order, while they stop at a limit; the first
 /// one's error is the one reported when all do.
@@ -422,13 +448,16 @@ struct Start {
 struct Starts {
     attempts: Vec<Start>,
     prefixes: Vec<Prefix>,
+    /// The schedules still to run after the one under way, in the same order.
+    later: Vec<Schedule>,
 }
 
 /// The state of a start after `passes`, the first passes of a schedule, when sub-edges are
 /// still missing and a later schedule begins with the same passes: that one goes on from a
 /// copy. The passes are deterministic, so its start is the same as if it made them again
-/// (all three [`SCHEDULES`] begin with the unguarded pass, which took 0.52 s of anchor's
-/// 1.4 s start; the third begins with the first's two first passes).
+/// (the schedules but [`ELIGIBLE`] begin with the unguarded pass, which took 0.52 s of
+/// anchor's 1.4 s start; [`SHORT`] with [`GUARDED`]'s two first passes; [`ELIGIBLE`] goes on
+/// from the state before any pass, past the Delaunay triangulation and its first flips).
 struct Prefix {
     shrink: bool,
     passes: Schedule,
@@ -468,39 +497,47 @@ impl Starts {
         mut stuck: Vec<[u32; 2]>,
         (schedule, done, shrink): (Schedule, usize, bool),
     ) -> Result<Vec<[u32; 2]>> {
+        if done == 0 {
+            // The state before any pass, for a later schedule that begins otherwise.
+            self.keep(mesh, progress, &stuck, (shrink, &schedule[..0]));
+        }
         for k in done..schedule.len() {
             if stuck.is_empty() {
                 break;
             }
             stuck = progress.edge_passes(mesh, part, stuck, &schedule[k..=k], shrink)?;
-            let passes = &schedule[..=k];
-            let tets = mesh.tets.slots();
-            if !stuck.is_empty() && self.wanted(shrink, schedule, passes, tets) {
-                self.prefixes.push(Prefix {
-                    shrink,
-                    passes,
-                    mesh: mesh.clone(),
-                    progress: progress.clone(),
-                    stuck: stuck.clone(),
-                });
-            }
+            self.keep(mesh, progress, &stuck, (shrink, &schedule[..=k]));
         }
         Ok(stuck)
     }
 
-    /// Whether the state after `passes`, the first passes of `schedule`, in a mesh of
-    /// `tets` tetrahedra (slots), is to be kept: a later schedule begins with them, it is
-    /// not kept yet, and the mesh has at most [`Prefix::MOST_TETS`] tetrahedra.
-    fn wanted(&self, shrink: bool, schedule: Schedule, passes: Schedule, tets: usize) -> bool {
-        if tets > Prefix::MOST_TETS {
-            return false;
+    /// Keeps a copy of the state after `passes`, where sub-edges `stuck` are missing and it
+    /// is [`Starts::wanted`].
+    fn keep(
+        &mut self,
+        mesh: &TetMesh,
+        progress: &Progress,
+        stuck: &[[u32; 2]],
+        (shrink, passes): (bool, Schedule),
+    ) {
+        if !stuck.is_empty() && self.wanted(shrink, passes, mesh.tets.slots()) {
+            self.prefixes.push(Prefix {
+                shrink,
+                passes,
+                mesh: mesh.clone(),
+                progress: progress.clone(),
+                stuck: stuck.to_vec(),
+            });
         }
-        let later = SCHEDULES
-            .iter()
-            .skip_while(|s| !std::ptr::eq(**s, schedule))
-            .skip(1)
-            .any(|s| s.starts_with(passes));
-        later
+    }
+
+    /// Whether the state after `passes`, the first passes of the schedule under way, in a
+    /// mesh of `tets` tetrahedra (slots), is to be kept: a later schedule of the order under
+    /// way begins with them, it is not kept yet, and the mesh has at most
+    /// [`Prefix::MOST_TETS`] tetrahedra.
+    fn wanted(&self, shrink: bool, passes: Schedule, tets: usize) -> bool {
+        tets <= Prefix::MOST_TETS
+            && self.later.iter().any(|s| s.starts_with(passes))
             && !self
                 .prefixes
                 .iter()
@@ -910,12 +947,12 @@ impl Progress {
         schedule: Schedule,
         shrink: bool,
     ) -> Result<Vec<[u32; 2]>> {
-        for &(depth, guarded) in schedule {
+        for &(depth, guard) in schedule {
             if stuck.is_empty() {
                 break;
             }
             stuck = until_stable(stuck, |&e| {
-                let done = edges::recover_edge(mesh, &part.protected, e, depth, guarded, shrink)?;
+                let done = edges::recover_edge(mesh, &part.protected, e, depth, guard, shrink)?;
                 if done {
                     self.edges_done.insert(e);
                 }

@@ -407,6 +407,14 @@ impl TetMesh {
         self.vertex_tet[v as usize] != NONE
     }
 
+    /// A vertex of a tetrahedron at vertex `v` off the plane of `v`, `p` and `q` (none when
+    /// `v` is not in the mesh or that tetrahedron has its finite vertices in the plane).
+    pub fn off_plane(&self, [v, p, q]: [u32; 3]) -> Option<u32> {
+        let t = *self.vertex_tet.get(v as usize).filter(|&&t| t != NONE)?;
+        (self.tets.vertices(t).into_iter())
+            .find(|&x| x != INFINITE && self.orient([v, p, q, x]) != Sign::Zero)
+    }
+
     /// Exact orientation of four finite vertices.
     #[inline]
     pub fn orient(&self, v: [u32; 4]) -> Sign {
