@@ -266,10 +266,10 @@ const ELIGIBLE: Schedule = &[(DEPTH, Eligible), (DEPTH + 1, Eligible)];
 /// 14 / 13 / 12; 17 / 20 / 17, 17 / 16 / 15; 23 / 26 / 21, 25 / 24 / 26; 29 / 29 / 27, 37 /
 /// 35 / 38; 31 / 40 / 37, 36 / 41 / 36; 50 / 46 / 53, 46 / 48 / 42 (TetGen 24, 3, 0, 18, 6,
 /// 8, 14 and 20 with points on its boundary too from three notches, none from six: it
-/// fails). The last two, under TetGen's rule, take Chazelle's polyhedron with three notches
-/// a side to 10 points and the star-shaped surfaces of the tests from 14 points on 11 of 52
-/// to 10 on 8; on anchor, joint, handle, pipe and Chazelle's with two and four notches they
-/// do no better.
+/// fails). The last two, under TetGen's rule, take Chazelle's polyhedra with three and eight
+/// notches a side to 10 and 38 points and the star-shaped surfaces of the tests from 14
+/// points on 11 of 52 to 10 on 8; on anchor, joint, handle, pipe and Chazelle's with two and
+/// four to seven notches they do no better.
 static RUNS: [(EdgeOrder, Schedule); 8] = [
     (EdgeOrder::Partition, GUARDED),
     (EdgeOrder::Partition, OPEN),
