@@ -313,13 +313,13 @@ impl Rule for Eligible {
 
     fn facet(&self, mesh: &TetMesh, f: [u32; 3]) -> bool {
         let [a, b] = self.0;
-        if crosses(mesh, f, a, b) {
-            return false;
+        let in_plane = |e: u32| mesh.orient([f[0], f[1], f[2], e]) == Sign::Zero;
+        // Off the plane, only a crossing of the interior counts; with one end in it and the
+        // other off it, the segment cannot cross the facet.
+        if f.contains(&INFINITE) || !in_plane(a) {
+            return !crosses(mesh, f, a, b);
         }
-        if f.contains(&INFINITE)
-            || mesh.orient([f[0], f[1], f[2], a]) != Sign::Zero
-            || mesh.orient([f[0], f[1], f[2], b]) != Sign::Zero
-        {
+        if !in_plane(b) {
             return true;
         }
         // In the facet's plane: its sides must not cross the segment; a vertex off the plane
