@@ -1439,6 +1439,13 @@ fn flat_tetrahedra_go_through_an_edge_and_the_regions_are_told() {
 /// triangles tile space and each triangle stays in its cone, so the surface is embedded;
 /// integer coordinates make coplanar and cospherical vertices common.
 fn star_surface(seed: u64, k: i32, radii: &[i32]) -> (Vec<f64>, Vec<u32>) {
+    grid_surface(seed, k, radii, true)
+}
+
+/// The cube's surface grid of half-size `k`, each vertex moved along its ray by a factor among
+/// `radii`, each unit square split along a diagonal drawn at random, or else along the one
+/// from its first corner to its third.
+fn grid_surface(seed: u64, k: i32, radii: &[i32], random_diagonals: bool) -> (Vec<f64>, Vec<u32>) {
     let mut next = uniform(seed);
     let mut index: HashMap<[i32; 3], u32> = HashMap::new();
     let mut xyz = Vec::new();
@@ -1470,7 +1477,7 @@ fn star_surface(seed: u64, k: i32, radii: &[i32]) -> (Vec<f64>, Vec<u32>) {
                         corner(i, j + 1),
                     ];
                     let q = q.map(|d| vertex(d, &mut next));
-                    let split = if next() < 0.5 {
+                    let split = if !random_diagonals || next() < 0.5 {
                         [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
                     } else {
                         [[q[0], q[1], q[3]], [q[1], q[2], q[3]]]
@@ -1555,5 +1562,21 @@ fn meshed_without_points(cases: &[(u64, i32, &[i32])]) {
         let mesh = tetrahedralize_surface(&xyz, &triangles, &SurfaceOptions::default()).unwrap();
         let points = check(&xyz, &triangles, &mesh);
         assert_eq!(points, 0, "seed {seed}, k {k}: {points} interior points");
+    }
+}
+
+/// Grid cubes whose squares are all split along the same diagonal, a convex polyhedron
+/// TetGen -pY meshes without a point at every size: the symbolic perturbation makes the other
+/// diagonal Delaunay on every square, and flips recover them all at half-sizes 1 and 2; at 3
+/// they leave 7 of the 216 missing (an edge crossed in the face's plane whose shell holds
+/// tetrahedra flat against the neighbouring squares' subfaces), and 3 interior points stay.
+/// The count is a record of where recovery stands, not a bound it should reach.
+#[test]
+fn grid_cubes_mesh_and_small_ones_without_points() {
+    for (k, most) in [(1, 0), (2, 0), (3, 3)] {
+        let (xyz, triangles) = grid_surface(0, k, &[1], false);
+        let mesh = tetrahedralize_surface(&xyz, &triangles, &SurfaceOptions::default()).unwrap();
+        let points = check(&xyz, &triangles, &mesh);
+        assert!(points <= most, "half-size {k}: {points} interior points");
     }
 }
