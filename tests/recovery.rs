@@ -1566,11 +1566,12 @@ fn meshed_without_points(cases: &[(u64, i32, &[i32])]) {
 }
 
 /// Grid cubes whose squares are all split along the same diagonal, a convex polyhedron
-/// TetGen -pY meshes without a point at every size: the symbolic perturbation makes the other
-/// diagonal Delaunay on every square, and flips recover them all at half-sizes 1 and 2; at 3
-/// they leave 7 of the 216 missing (an edge crossed in the face's plane whose shell holds
-/// tetrahedra flat against the neighbouring squares' subfaces), and 3 interior points stay.
-/// The count is a record of where recovery stands, not a bound it should reach.
+/// TetGen -pY meshes without a point at half-sizes 1 to 4: the symbolic perturbation makes the
+/// other diagonal Delaunay on every square, and flips recover them all at half-sizes 1 and 2;
+/// at 3 they leave 7 of the 216 missing, each crossing an edge in the face's plane (on the
+/// first, the 2-3 flips that would shrink that edge's shell make flat tetrahedra), and 3
+/// interior points stay. The count is a record of where recovery stands, not a bound it
+/// should reach.
 #[test]
 fn grid_cubes_mesh_and_small_ones_without_points() {
     for (k, most) in [(1, 0), (2, 0), (3, 3)] {

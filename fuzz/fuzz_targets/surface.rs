@@ -14,7 +14,9 @@
 
 use std::collections::HashMap;
 
+use delmesh::geometry::tet_volume;
 use delmesh::recovery::{tetrahedralize_surface, SurfaceOptions};
+use delmesh::triangulation::tets::FACE;
 use delmesh::ErrorKind;
 use libfuzzer_sys::fuzz_target;
 
@@ -107,13 +109,9 @@ fn check_facets(triangles: &[u32], mesh: &delmesh::Mesh, inward: &dyn Fn(usize) 
         f.sort_unstable();
         f
     };
-    let mut facets = std::collections::HashSet::new();
-    for t in mesh.tetrahedra.chunks_exact(4) {
-        for skip in 0..4 {
-            let f: Vec<u32> = (0..4).filter(|&i| i != skip).map(|i| t[i]).collect();
-            facets.insert(sorted([f[0], f[1], f[2]]));
-        }
-    }
+    let facets: std::collections::HashSet<[u32; 3]> = (mesh.tetrahedra.chunks_exact(4))
+        .flat_map(|t| FACE.map(|f| sorted(f.map(|i| t[i]))))
+        .collect();
     let labels: std::collections::HashSet<i32> = mesh.tetrahedron_labels.iter().copied().collect();
     for (f, (t, l)) in triangles
         .chunks_exact(3)
@@ -139,14 +137,11 @@ fn check_facets(triangles: &[u32], mesh: &delmesh::Mesh, inward: &dyn Fn(usize) 
 
 /// The tetrahedra's volume equals the surface's (the hull's, when it is kept), to 1e-12.
 fn check_volume(xyz: &[f64], triangles: &[u32], mesh: &delmesh::Mesh, hull: bool) {
-    let point = |v: u32| mesh.vertex(v);
-    let det = |p: [[f64; 3]; 4]| {
-        let [a, b, c] = [1, 2, 3].map(|i| [0, 1, 2].map(|k| p[i][k] - p[0][k]));
-        a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
-            + a[2] * (b[0] * c[1] - b[1] * c[0])
-    };
     let total: f64 = (mesh.tetrahedra.chunks_exact(4))
-        .map(|t| det([0, 1, 2, 3].map(|k| point(t[k]))))
+        .map(|t| {
+            let p = [0, 1, 2, 3].map(|k| mesh.vertex(t[k]));
+            tet_volume([&p[0], &p[1], &p[2], &p[3]])
+        })
         .sum();
     assert!(total > 0.0, "no volume");
     if hull {
@@ -157,7 +152,7 @@ fn check_volume(xyz: &[f64], triangles: &[u32], mesh: &delmesh::Mesh, hull: bool
     let enclosed: f64 = (triangles.chunks_exact(3))
         .map(|f| {
             let p = |v: u32| [0, 1, 2].map(|k| xyz[3 * v as usize + k]);
-            det([[0.0; 3], p(f[0]), p(f[1]), p(f[2])]).abs()
+            tet_volume([&[0.0; 3], &p(f[0]), &p(f[1]), &p(f[2])]).abs()
         })
         .sum();
     let rel = (total - enclosed).abs() / enclosed;
