@@ -29,10 +29,17 @@ use crate::triangulation::tets::INFINITE;
 const MAX_SHELL: usize = 24;
 
 /// The edges and facets no flip may destroy.
+///
+/// Invariant: every vertex of a protected edge or facet is flagged in `touched` (they are
+/// added by [`Protected::insert_facet`] alone; removing them leaves the flags). The flags
+/// answer first, so that the many questions about edges and facets with another vertex
+/// (interior points above all) need no lookup in the large hash sets, whose random accesses
+/// miss the cache.
 #[derive(Default)]
 pub struct Protected {
     pub edges: FxHashSet<[u32; 2]>,
     pub facets: FxHashSet<Key>,
+    touched: Vec<bool>,
 }
 
 impl Protected {
@@ -41,10 +48,24 @@ impl Protected {
     pub fn insert_facet(&mut self, f: [u32; 3]) {
         self.facets.insert(key(f));
         self.edges.extend(sides(f));
+        for v in f {
+            let v = v as usize;
+            if v >= self.touched.len() {
+                self.touched.resize(v + 1, false);
+            }
+            self.touched[v] = true;
+        }
+    }
+
+    /// Whether every vertex of `vertices` may be on a protected edge or facet.
+    fn all_touched(&self, vertices: &[u32]) -> bool {
+        vertices
+            .iter()
+            .all(|&v| self.touched.get(v as usize) == Some(&true))
     }
 
     pub fn edge(&self, a: u32, b: u32) -> bool {
-        self.edges.contains(&pair(a, b))
+        self.all_touched(&[a, b]) && self.edges.contains(&pair(a, b))
     }
 
     /// Per vertex `0..vertices`, whether it is an end of a protected edge (lies on the
@@ -58,7 +79,7 @@ impl Protected {
     }
 
     pub fn facet(&self, f: [u32; 3]) -> bool {
-        self.facets.contains(&key(f))
+        self.all_touched(&f) && self.facets.contains(&key(f))
     }
 
     /// Whether the shell of the unprotected edge `(a, b)` with ring `ring` may be replaced:
@@ -210,7 +231,7 @@ fn shell_triangulation(
     [a, b]: [u32; 2],
     ring: &[u32],
     allowed: &dyn Rule,
-) -> Option<Vec<[usize; 3]>> {
+) -> Option<RingTriangles> {
     if !protected.shell_may_go([a, b], ring) {
         return None;
     }
@@ -417,6 +438,9 @@ pub(super) fn blocking_sides(mesh: &TetMesh, t: u32, i: usize) -> SmallVec<[[u32
         .collect()
 }
 
+/// The triangles of a ring's triangulation, by their corners' positions in the ring.
+type RingTriangles = SmallVec<[[usize; 3]; 16]>;
+
 /// What the triangulation of a ring optimizes ([`best_ring_triangulation`]).
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
 enum Goal {
@@ -484,11 +508,13 @@ fn best_ring_triangulation(
     ring: &[u32],
     allowed: &dyn Rule,
     (goal, floor): (Goal, f64),
-) -> Option<(Vec<[usize; 3]>, f64)> {
+) -> Option<(RingTriangles, f64)> {
     let n = ring.len();
     // best[i * n + j]: the best score over triangulations of the sub-polygon i..=j, and the
-    // apex k of the triangle on side (i, j). Sized to the ring (most rings are short).
-    let mut best = vec![(f64::NEG_INFINITY, usize::MAX); n * n];
+    // apex k of the triangle on side (i, j). Sized to the ring, without allocation up to
+    // rings of 8 (most rings are short, and this runs millions of times on hard inputs).
+    let mut best: SmallVec<[(f64, usize); 64]> =
+        smallvec::smallvec![(f64::NEG_INFINITY, usize::MAX); n * n];
     for i in 0..n - 1 {
         best[i * n + i + 1] = (goal.empty(), usize::MAX);
     }
@@ -528,8 +554,8 @@ fn best_ring_triangulation(
     if apex == usize::MAX {
         return None;
     }
-    let mut triangles = Vec::with_capacity(n - 2);
-    let mut stack = vec![(0, n - 1)];
+    let mut triangles = RingTriangles::new();
+    let mut stack: SmallVec<[(usize, usize); 16]> = smallvec::smallvec![(0, n - 1)];
     while let Some((i, j)) = stack.pop() {
         if j > i + 1 {
             let k = best[i * n + j].1;

@@ -178,36 +178,9 @@ impl Cavity {
     }
 }
 
-/// The protected edges as refinement asks for them: a flag per vertex lying on them answers
-/// first, so that the many questions about edges with another vertex (the refinement's own
-/// points above all) need no lookup in the large hash set, whose random accesses miss the
-/// cache. (Whether a facet is protected, the regions tell: [`Regions::on_surface`].)
-struct Surface<'a> {
-    protected: &'a Protected,
-    on: Vec<bool>,
-}
-
-impl<'a> Surface<'a> {
-    fn new(protected: &'a Protected, vertices: usize) -> Self {
-        let on = protected.vertices_on_edges(vertices);
-        Surface { protected, on }
-    }
-
-    /// Whether every vertex lies on a protected edge (refinement's points lie on none).
-    fn all_on(&self, vertices: &[u32]) -> bool {
-        vertices
-            .iter()
-            .all(|&v| self.on.get(v as usize).copied().unwrap_or(false))
-    }
-
-    fn edge(&self, a: u32, b: u32) -> bool {
-        self.all_on(&[a, b]) && self.protected.edge(a, b)
-    }
-}
-
 struct Refiner<'a> {
     mesh: &'a mut TetMesh,
-    surface: Surface<'a>,
+    protected: &'a Protected,
     regions: &'a mut Regions,
     ratio: f64,
     /// Protecting-ball radius of every input vertex (0 for those not in the mesh); Steiner
@@ -236,7 +209,7 @@ impl<'a> Refiner<'a> {
     ) -> Self {
         Refiner {
             lfs: Vec::new(),
-            surface: Surface::new(protected, mesh.points.len()),
+            protected,
             mesh,
             regions,
             ratio,
@@ -537,7 +510,7 @@ impl<'a> Refiner<'a> {
         (0..3).any(|k| {
             let (x, y) = (f[k], f[(k + 1) % 3]);
             let (a, b) = (self.mesh.point(x), self.mesh.point(y));
-            dot(&sub(a, c), &sub(b, c)) < 0.0 && self.surface.edge(x, y)
+            dot(&sub(a, c), &sub(b, c)) < 0.0 && self.protected.edge(x, y)
         })
     }
 
@@ -695,9 +668,7 @@ impl<'a> Refiner<'a> {
             if !self.mesh.tets.is_live(t) || self.mesh.tets.vertices(t) != quad {
                 continue;
             }
-            if let Some(created) =
-                remove_non_delaunay_edge(self.mesh, self.surface.protected, t, edge)?
-            {
+            if let Some(created) = remove_non_delaunay_edge(self.mesh, self.protected, t, edge)? {
                 self.flipped(t, &created, &mut stack, &mut touched);
             }
         }
@@ -790,7 +761,7 @@ impl<'a> Refiner<'a> {
         // A 3-2 flip around an edge of the facet, inside the kept regions.
         let kept = |_: &TetMesh, shell: [u32; 3], _| shell.iter().all(|&u| self.regions.kept(u));
         for edge in [[x, y], [y, z], [z, x]] {
-            if let Some(created) = flip32(self.mesh, self.surface.protected, t, edge, &kept)? {
+            if let Some(created) = flip32(self.mesh, self.protected, t, edge, &kept)? {
                 return Ok(Some(created));
             }
         }
@@ -828,7 +799,7 @@ impl<'a> Refiner<'a> {
                 }
             }
         }
-        let protected = self.surface.protected;
+        let protected = self.protected;
         let edges = ByVertex::new(n, protected.edges.iter().map(|&[a, b]| (a, b)));
         let mut edge_done = vec![false; edges.items.len()];
         for &(t, i) in self.regions.surface_facets() {
