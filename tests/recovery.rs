@@ -435,10 +435,10 @@ fn flips_keep_the_mesh_valid_and_the_protected_pieces() {
     );
 }
 
-/// Remembered failures of edge removal change no removal: the same removals on the same
-/// mesh, with the failures forgotten before each, make the same mesh.
+/// Remembered ring triangulations and failures of edge removal change no removal: the same
+/// removals on the same mesh, with the rings forgotten before each, make the same mesh.
 #[test]
-fn remembered_failed_rings_change_no_removal() {
+fn remembered_rings_change_no_removal() {
     use delmesh::recovery::flips::{remove_edge_deep, Any, Protected};
     use delmesh::recovery::tetmesh::TetMesh;
     let (points, used) = random_points(0x9e37_79b9, 60);
@@ -454,12 +454,12 @@ fn remembered_failed_rings_change_no_removal() {
                 continue;
             }
             if forget {
-                mesh.failed_rings.clear();
+                mesh.rings.clear();
             }
             if remove_edge_deep(&mut mesh, &protected, e, &Any, 1, &mut 8).unwrap() {
                 removed += 1;
             }
-            remembered = remembered.max(mesh.failed_rings.len());
+            remembered = remembered.max(mesh.rings.len());
         }
         mesh.validate().unwrap();
         let tets: Vec<[u32; 4]> = mesh.tets.live().map(|t| mesh.tets.vertices(t)).collect();
@@ -468,7 +468,7 @@ fn remembered_failed_rings_change_no_removal() {
     let (kept, removed, remembered) = run(false);
     let (forgotten, _, _) = run(true);
     assert!(removed > 20 && remembered > 20, "{removed} {remembered}");
-    assert!(kept == forgotten, "remembered failures changed the mesh");
+    assert!(kept == forgotten, "remembered rings changed the mesh");
 }
 
 /// The sum over the finite tetrahedra of their volume times the mean squared norm of their

@@ -11,9 +11,9 @@
 //! Invariants (those of [`Tets`], checked by [`TetMesh::validate`]): vertex ids index
 //! `points`; every live finite tetrahedron is positively oriented; adjacency is symmetric;
 //! `vertex_tet[v]` is a live tetrahedron incident to `v` for every vertex in use;
-//! `failed_rings` and `exact_signs` hold only failures and signs that the points' current
-//! positions make (they are emptied when a point moves, is rounded or its number is given
-//! back); `failed_fills` holds only failures of
+//! `rings` and `exact_signs` hold only triangulations, failures and signs that the points'
+//! current positions make (they are emptied when a point moves, is rounded or its number is
+//! given back); `failed_fills` holds only failures of
 //! surfaces whose key, positions included, it stores; `bounds` holds every point.
 
 use std::cell::RefCell;
@@ -22,7 +22,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 use smallvec::SmallVec;
 
 use super::by_vertex::ByVertex;
-use super::flips::{FailedRings, Protected};
+use super::flips::{Protected, RingMemo};
 use super::suppress::FailedFills;
 use crate::error::{Error, Result};
 use crate::predicates::combination::{self, Combination, Exact};
@@ -93,8 +93,8 @@ pub struct TetMesh {
     first_added: u32,
     /// A tetrahedron was replaced or a point added since the Delaunay triangulation.
     changed: bool,
-    /// Edge removals known to fail while no point moves.
-    pub failed_rings: FailedRings,
+    /// The triangulations of edges' rings (or their absence) known while no point moves.
+    pub rings: RingMemo,
     /// Orientations that needed the exact stage of [`TetMesh::orient_on_surface`].
     exact_signs: RefCell<ExactSigns>,
     /// Surfaces known to have no filling without points.
@@ -190,8 +190,8 @@ fn sorted_with_parity(mut q: [u32; 4]) -> ([u32; 4], bool) {
     (q, odd)
 }
 
-/// A copy without the scratch tables and with no failed ring, exact sign or filling remembered: those are
-/// only looked up again, the copy meshes as the original would.
+/// A copy without the scratch tables and with no ring, exact sign or failed filling
+/// remembered: those are only looked up again, the copy meshes as the original would.
 impl Clone for TetMesh {
     fn clone(&self) -> Self {
         TetMesh {
@@ -203,7 +203,7 @@ impl Clone for TetMesh {
             edges: EdgeTable::default(),
             first_added: self.first_added,
             changed: self.changed,
-            failed_rings: FailedRings::default(),
+            rings: RingMemo::default(),
             exact_signs: RefCell::default(),
             failed_fills: FailedFills::default(),
             bounds: self.bounds,
@@ -241,7 +241,7 @@ impl TetMesh {
             edges: EdgeTable::default(),
             first_added: 0,
             changed: false,
-            failed_rings: FailedRings::default(),
+            rings: RingMemo::default(),
             exact_signs: RefCell::default(),
             failed_fills: FailedFills::default(),
             bounds: [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]],
@@ -321,6 +321,7 @@ impl TetMesh {
         });
         if positive {
             self.exact_signs.get_mut().clear();
+            self.rings.clear();
         } else {
             self.on_surface = kept;
             self.surface_error = error;
@@ -449,7 +450,7 @@ impl TetMesh {
         self.on_surface.pop();
         self.vertex_tet.pop();
         // The next point added takes its number.
-        self.failed_rings.clear();
+        self.rings.clear();
         self.exact_signs.get_mut().clear();
     }
 
@@ -458,7 +459,7 @@ impl TetMesh {
         self.points[v as usize] = p;
         self.on_surface[v as usize] = None;
         self.enclose(v);
-        self.failed_rings.clear();
+        self.rings.clear();
         self.exact_signs.get_mut().clear();
     }
 
