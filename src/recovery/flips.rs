@@ -404,8 +404,7 @@ pub fn remove_edge_deep(
             return Ok(false);
         }
         let mut shrunk = false;
-        let quads: SmallVec<[[u32; 4]; 16]> =
-            shell.iter().map(|&u| mesh.tets.vertices(u)).collect();
+        let quads: SmallVec<[[u32; 4]; 8]> = shell.iter().map(|&u| mesh.tets.vertices(u)).collect();
         for (i, &s) in shell.iter().enumerate() {
             if shell
                 .iter()
@@ -465,7 +464,7 @@ pub(super) fn blocking_sides(mesh: &TetMesh, t: u32, i: usize) -> SmallVec<[[u32
 }
 
 /// The triangles of a ring's triangulation, by their corners' positions in the ring.
-type RingTriangles = SmallVec<[[usize; 3]; 16]>;
+type RingTriangles = SmallVec<[[usize; 3]; 6]>;
 
 /// What the triangulation of a ring optimizes ([`best_ring_triangulation`]).
 #[derive(Clone, Copy, PartialEq, Eq, Debug)]
