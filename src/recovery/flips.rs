@@ -562,11 +562,20 @@ fn best_ring_triangulation(
                 }
                 let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
                 let [ta, tb] = ring_tetrahedra([a, b], ring, [i, k, j]);
+                // With no floor (recovery's searches), the orientations first: a third of
+                // the triangles give a tetrahedron that is not positive (pipe: 1.6 of 4.9
+                // million), and nearly all the others score above the best so far. With a
+                // floor, most triangles score below it: the measures first.
+                let positive = || mesh.positive(ta) && mesh.positive(tb);
+                let oriented_first = floor == f64::NEG_INFINITY;
+                if oriented_first && !positive() {
+                    continue;
+                }
                 let q = goal.join(bound, goal.pair(mesh, ta, tb));
                 if q <= best[i * n + j].0 || q <= floor {
                     continue;
                 }
-                if !mesh.positive(ta) || !mesh.positive(tb) || !allowed.facet(mesh, [wi, wk, wj]) {
+                if !oriented_first && !positive() || !allowed.facet(mesh, [wi, wk, wj]) {
                     continue;
                 }
                 if q > best[i * n + j].0 {
