@@ -1260,17 +1260,12 @@ mod tests {
         let mut signs = ExactSigns::default();
         signs.insert([2, 0, 3, 1], mesh.orient([2, 0, 3, 1]));
         let mut orders = 0;
-        for a in 0..4 {
-            for b in 0..4 {
-                for c in 0..4 {
-                    let d = 6 - a - b - c;
-                    let q = [a, b, c, d];
-                    if (0..4).all(|k| q.contains(&k)) {
-                        let p = q.map(|v| mesh.point(v));
-                        assert_eq!(signs.get(q), Some(orient3d(p[0], p[1], p[2], p[3])));
-                        orders += 1;
-                    }
-                }
+        for code in 0..256u32 {
+            let q = [0, 2, 4, 6].map(|shift| code >> shift & 3);
+            if (0..4).all(|k| q.contains(&k)) {
+                let p = q.map(|v| mesh.point(v));
+                assert_eq!(signs.get(q), Some(orient3d(p[0], p[1], p[2], p[3])));
+                orders += 1;
             }
         }
         assert_eq!(orders, 24);
