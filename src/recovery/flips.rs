@@ -255,32 +255,39 @@ fn shell_triangulation(
     found
 }
 
-/// Searches known to fail, keyed by everything their result depends on: a cache, looked up
-/// before searching again. At most `MOST` keys are held; then all are forgotten and
-/// remembered anew.
+/// Results of searches, keyed by everything they depend on: a cache, looked up before
+/// searching again. At most `MOST` keys are held; then all are forgotten and remembered anew.
 #[derive(Clone, Debug)]
-pub struct Failures<K, const MOST: usize>(FxHashSet<K>);
+pub struct Memo<K, V, const MOST: usize>(FxHashMap<K, V>);
 
-impl<K, const MOST: usize> Default for Failures<K, MOST> {
+impl<K, V, const MOST: usize> Default for Memo<K, V, MOST> {
     fn default() -> Self {
-        Failures(FxHashSet::default())
+        Memo(FxHashMap::default())
     }
 }
 
-impl<K: std::hash::Hash + Eq, const MOST: usize> Failures<K, MOST> {
+impl<K: std::hash::Hash + Eq, V, const MOST: usize> Memo<K, V, MOST> {
+    pub fn get<Q>(&self, k: &Q) -> Option<&V>
+    where
+        K: std::borrow::Borrow<Q>,
+        Q: std::hash::Hash + Eq + ?Sized,
+    {
+        self.0.get(k)
+    }
+
     pub fn contains<Q>(&self, k: &Q) -> bool
     where
         K: std::borrow::Borrow<Q>,
         Q: std::hash::Hash + Eq + ?Sized,
     {
-        self.0.contains(k)
+        self.0.contains_key(k)
     }
 
-    pub fn insert(&mut self, k: K) {
+    pub fn insert(&mut self, k: K, v: V) {
         if self.0.len() == MOST {
             self.0.clear();
         }
-        self.0.insert(k);
+        self.0.insert(k, v);
     }
 
     pub fn len(&self) -> usize {
@@ -291,7 +298,7 @@ impl<K: std::hash::Hash + Eq, const MOST: usize> Failures<K, MOST> {
         self.0.is_empty()
     }
 
-    /// Forgets every failure; an empty set is left as it is (clearing costs its capacity).
+    /// Forgets every result; an empty table is left as it is (clearing costs its capacity).
     pub fn clear(&mut self) {
         if !self.0.is_empty() {
             self.0.clear();
@@ -306,9 +313,9 @@ impl<K: std::hash::Hash + Eq, const MOST: usize> Failures<K, MOST> {
 /// segment and filling a star anew remove the same edges of the same shells again and
 /// again: on fandisk, 92% of the failed searches had been made before, in the same ring; on
 /// pipe and on Chazelle's polyhedron with two notches a side, 95% and 94% of the successful
-/// ones. At most [`RingMemo::MOST`]; then all are forgotten and remembered anew.
+/// ones. At most [`RingMemo::MOST`] (2^17 was no faster).
 #[derive(Clone, Debug, Default)]
-pub struct RingMemo(FxHashMap<[u32; 4 + RingMemo::RING], Option<PackedTriangles>>);
+pub struct RingMemo(Memo<[u32; 4 + RingMemo::RING], Option<PackedTriangles>, { RingMemo::MOST }>);
 
 /// A ring's triangles by their corners' positions in the ring (below [`RingMemo::RING`]).
 type PackedTriangles = SmallVec<[[u8; 3]; 6]>;
@@ -350,20 +357,14 @@ impl RingMemo {
     }
 
     fn insert(&mut self, k: [u32; 4 + Self::RING], triangles: Option<&[[usize; 3]]>) {
-        if self.0.len() == Self::MOST {
-            self.0.clear();
-        }
         // The ring is at most `RING` long: its positions fit a byte.
         let packed = triangles.map(|t| t.iter().map(|c| c.map(|x| x as u8)).collect());
         self.0.insert(k, packed);
     }
 
-    /// Forgets every ring (a point moved; points are moved in long series, and an empty
-    /// table is left as it is).
+    /// Forgets every ring (a point moved).
     pub fn clear(&mut self) {
-        if !self.0.is_empty() {
-            self.0.clear();
-        }
+        self.0.clear();
     }
 }
 
@@ -544,6 +545,11 @@ fn best_ring_triangulation(
         best[i * n + i + 1] = (goal.empty(), usize::MAX);
     }
     let side = |i: usize, j: usize| j == i + 1 || (i == 0 && j == n - 1);
+    // With no floor (recovery's searches), the orientations first: a third of the triangles
+    // give a tetrahedron that is not positive (pipe: 1.6 of 4.9 million), and nearly all the
+    // others score above the best so far. With a floor, most triangles score below it: the
+    // measures first.
+    let oriented_first = floor == f64::NEG_INFINITY;
     // A diagonal (u, w) brings the edge and the facets (a, u, w) and (b, u, w).
     let diagonal = |u: u32, w: u32| {
         allowed.edge(mesh, u, w) && allowed.facet(mesh, [a, u, w]) && allowed.facet(mesh, [b, u, w])
@@ -562,12 +568,7 @@ fn best_ring_triangulation(
                 }
                 let (wi, wk, wj) = (ring[i], ring[k], ring[j]);
                 let [ta, tb] = ring_tetrahedra([a, b], ring, [i, k, j]);
-                // With no floor (recovery's searches), the orientations first: a third of
-                // the triangles give a tetrahedron that is not positive (pipe: 1.6 of 4.9
-                // million), and nearly all the others score above the best so far. With a
-                // floor, most triangles score below it: the measures first.
                 let positive = || mesh.positive(ta) && mesh.positive(tb);
-                let oriented_first = floor == f64::NEG_INFINITY;
                 if oriented_first && !positive() {
                     continue;
                 }

@@ -35,7 +35,7 @@
 
 use rustc_hash::FxHashMap as HashMap;
 
-use super::flips::{remove_edge_deep, Any, Failures, Protected};
+use super::flips::{remove_edge_deep, Any, Memo, Protected};
 use super::partition::{Host, Partition};
 use super::tetmesh::{key, Key, TetMesh};
 use super::until_stable;
@@ -976,7 +976,7 @@ fn fill_boundary(
     }
     let filled = fill_boundary_anew(mesh, boundary, inner);
     if filled.is_none() {
-        mesh.failed_fills.insert(key);
+        mesh.failed_fills.insert(key, ());
     }
     filled
 }
@@ -987,7 +987,7 @@ fn fill_boundary(
 /// Refilling the stars grown by layers meets the same boundaries again and again: on anchor,
 /// 959 of the 1749 fillings were failures made before, 1.58 s of its 5.3 s. At most 4096
 /// keys (one takes 12 words per triangle).
-pub type FailedFills = Failures<Vec<u64>, 4096>;
+pub type FailedFills = Memo<Vec<u64>, (), 4096>;
 
 /// The key of `boundary` with `inner` in [`FailedFills`]: the triangles' vertices in order,
 /// then (after [`INFINITE`](crate::triangulation::tets::INFINITE)) the inner ones, each

@@ -18,11 +18,11 @@
 
 use std::cell::RefCell;
 
-use rustc_hash::{FxHashMap, FxHashSet};
+use rustc_hash::FxHashSet;
 use smallvec::SmallVec;
 
 use super::by_vertex::ByVertex;
-use super::flips::{Protected, RingMemo};
+use super::flips::{Memo, Protected, RingMemo};
 use super::suppress::FailedFills;
 use crate::error::{Error, Result};
 use crate::predicates::combination::{self, Combination, Exact};
@@ -147,7 +147,7 @@ pub struct Change {
 /// tests had been made before, and the exact stage took a quarter of the time). At most
 /// [`ExactSigns::MOST`] are held; then all are forgotten and remembered anew.
 #[derive(Default)]
-struct ExactSigns(FxHashMap<[u32; 4], Sign>);
+struct ExactSigns(Memo<[u32; 4], Sign, { ExactSigns::MOST }>);
 
 impl ExactSigns {
     const MOST: usize = 1 << 17;
@@ -160,18 +160,12 @@ impl ExactSigns {
     }
 
     fn insert(&mut self, q: [u32; 4], sign: Sign) {
-        if self.0.len() == Self::MOST {
-            self.0.clear();
-        }
         let (key, odd) = sorted_with_parity(q);
         self.0.insert(key, if odd { sign.negate() } else { sign });
     }
 
-    /// Forgets every sign; an empty table is left as it is (clearing costs its capacity).
     fn clear(&mut self) {
-        if !self.0.is_empty() {
-            self.0.clear();
-        }
+        self.0.clear();
     }
 }
 
